@@ -1,0 +1,54 @@
+// Subcommands of the `tessera` command. Each lives in its own cmd_*.cpp and registers itself
+// with a static TESSERA_COMMAND(...) so that main.cpp never needs to know the list.
+//
+// Exit codes (documented in the README): 0 success, 1 runtime failure (tessera::Error: a file
+// that cannot be read or written, a render that failed), 2 usage error (bad flags or values).
+#pragma once
+#include <CLI/CLI.hpp>
+
+#include <tbb/global_control.h>
+
+#include <functional>
+#include <memory>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+namespace tessera::cli {
+
+// A bad flag value found after parsing (e.g. "--size 0x0"): printed like a parse error.
+struct UsageError : std::runtime_error {
+    using std::runtime_error::runtime_error;
+};
+
+// Adds one subcommand to `root` and returns the function that runs it once the command line
+// has been parsed (options are bound to storage the function owns). Returns the exit code.
+using Run = std::function<int()>;
+using Define = std::function<Run(CLI::App& root)>;
+
+// `order` sorts the subcommands in --help (lower first).
+struct Registration {
+    Registration(int order, Define define);
+};
+
+struct Entry {
+    int order;
+    Define define;
+};
+const std::vector<Entry>& registered_commands();
+
+// Parses "WxH" ("1920x1080") into positive sizes; throws UsageError naming `flag` otherwise.
+void parse_size(const std::string& text, const char* flag, int& width, int& height);
+
+// Adds the common "--threads N" option (0, the default, means every core) to `command`.
+void add_threads_option(CLI::App& command, int& threads);
+
+// Caps oneTBB's worker count for as long as the returned guard lives (0: no cap).
+std::unique_ptr<tbb::global_control> limit_threads(int threads);
+
+}  // namespace tessera::cli
+
+#define TESSERA_CONCAT_(a, b) a##b
+#define TESSERA_CONCAT(a, b) TESSERA_CONCAT_(a, b)
+#define TESSERA_COMMAND(order, define) \
+    static const ::tessera::cli::Registration TESSERA_CONCAT(tessera_command_, __LINE__){order, define}

@@ -1,0 +1,102 @@
+// The `tessera` command: parses the command line with CLI11, runs the chosen subcommand, and
+// turns every failure into one line on stderr and an exit code (see command.h).
+#include <OpenImageIO/oiioversion.h>
+#include <embree3/rtcore_config.h>
+#include <oneapi/tbb/version.h>
+
+#include <algorithm>
+#include <cstdio>
+#include <exception>
+#include <map>
+#include <new>
+
+#include "examples/command.h"
+#include "raster/error.h"
+
+namespace {
+
+std::string version_text() {
+    std::string text = "tessera " TESSERA_VERSION "\n";
+    text += "  embree " RTC_VERSION_STRING ", oneTBB " TBB_VERSION_STRING
+            ", OpenImageIO " OIIO_VERSION_STRING "\n";
+    text += "  built for: ";
+#if defined(__AVX512F__)
+    text += "AVX-512";
+#elif defined(__AVX2__)
+    text += "AVX2";
+#else
+    text += "generic x86-64 (scalar SIMD fallback)";
+#endif
+    return text;
+}
+
+void print_error(const std::string& message, const std::string& hint) {
+    std::fprintf(stderr, "tessera: error: %s\n", message.c_str());
+    if (!hint.empty()) std::fprintf(stderr, "hint: %s\n", hint.c_str());
+}
+
+// CLI11 messages sometimes span lines; the contract is one line.
+std::string one_line(std::string text) {
+    std::replace(text.begin(), text.end(), '\n', ' ');
+    while (!text.empty() && text.back() == ' ') text.pop_back();
+    return text;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+    using namespace tessera::cli;
+    CLI::App app{"tessera: a tiled SIMD CPU rasterizer, an Embree ray tracer and procedural "
+                 "generators, rendering the same scenes",
+                 "tessera"};
+    app.set_version_flag("--version", version_text());
+    app.require_subcommand(1);
+    app.footer("Run 'tessera COMMAND --help' for a command's options.");
+
+    std::vector<Entry> commands = registered_commands();
+    std::stable_sort(commands.begin(), commands.end(),
+                     [](const Entry& a, const Entry& b) { return a.order < b.order; });
+    std::map<const CLI::App*, Run> runs;
+    for (const Entry& entry : commands) {
+        const size_t before = app.get_subcommands({}).size();
+        Run run = entry.define(app);
+        runs[app.get_subcommands({}).at(before)] = std::move(run);
+    }
+
+    std::string hint_command = "tessera";
+    try {
+        try {
+            app.parse(argc, argv);
+        } catch (const CLI::Success& done) {
+            return app.exit(done);  // --help, --version
+        } catch (const CLI::ParseError& error) {
+            for (const CLI::App* sub : app.get_subcommands())
+                hint_command = "tessera " + sub->get_name();
+            if (app.get_subcommands().empty() && error.get_name() == "RequiredError")
+                print_error("no command given", "run 'tessera --help' to list the commands");
+            else
+                print_error(one_line(error.what()), "run '" + hint_command + " --help' for usage");
+            return 2;
+        }
+        for (const CLI::App* sub : app.get_subcommands()) {
+            hint_command = "tessera " + sub->get_name();
+            return runs.at(sub)();
+        }
+        return 2;
+    } catch (const UsageError& error) {
+        print_error(error.what(), "run '" + hint_command + " --help' for usage");
+        return 2;
+    } catch (const std::invalid_argument& error) {
+        print_error(error.what(), "run '" + hint_command + " --help' for usage");
+        return 2;
+    } catch (const tessera::Error& error) {
+        print_error(error.what(), "");
+        return 1;
+    } catch (const std::bad_alloc&) {
+        print_error("out of memory (try a smaller --size)", "");
+        return 1;
+    } catch (const std::exception& error) {
+        print_error(error.what(), "");
+        return 1;
+    }
+}

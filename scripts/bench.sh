@@ -1,0 +1,20 @@
+#!/usr/bin/env bash
+# Runs every Google Benchmark suite (build/bin/bench_*) and writes one JSON file per suite
+# under bench/results/<UTC date and time>/, next to a machine.txt that says where it ran.
+# Extra arguments go to every suite, e.g.: scripts/bench.sh --benchmark_filter=Fill
+set -euo pipefail
+root=$(cd "$(dirname "$0")/.." && pwd)
+bin=${TESSERA_BUILD:-$root/build}/bin
+stamp=$(date -u +%Y-%m-%dT%H%M%SZ)
+out=$root/bench/results/$stamp
+mkdir -p "$out"
+"$bin/tessera" info > "$out/machine.txt"
+shopt -s nullglob
+suites=("$bin"/bench_*)
+((${#suites[@]})) || { echo "bench: no suites in $bin (build first: make build)" >&2; exit 1; }
+for suite in "${suites[@]}"; do
+  name=$(basename "$suite")
+  echo "== $name"
+  "$suite" --benchmark_out="$out/$name.json" --benchmark_out_format=json "$@"
+done
+echo "bench: results in $out"

@@ -1,0 +1,105 @@
+#include "raster/image_io.h"
+
+#include <gtest/gtest.h>
+
+#include <cstdint>
+#include <filesystem>
+#include <vector>
+
+#include "raster/error.h"
+
+namespace fs = std::filesystem;
+using namespace tessera;
+
+namespace {
+
+fs::path scratch(const char* name) {
+    fs::path dir = fs::temp_directory_path() / "tessera_image_io_test";
+    fs::create_directories(dir);
+    return dir / name;
+}
+
+size_t files_in(const fs::path& dir) {
+    return size_t(std::distance(fs::directory_iterator(dir), fs::directory_iterator()));
+}
+
+}  // namespace
+
+TEST(ImageIO, PngRoundTripIsExact) {
+    const int w = 7, h = 5;
+    std::vector<uint8_t> pixels(w * h * 3);
+    for (size_t i = 0; i < pixels.size(); ++i) pixels[i] = uint8_t(i * 37);
+    const fs::path path = scratch("round.png");
+    write_image(path, {w, h, 3, PixelType::u8, pixels.data()});
+    FloatImage back = read_image(path);
+    ASSERT_EQ(back.width, w);
+    ASSERT_EQ(back.height, h);
+    ASSERT_EQ(back.channels, 3);
+    for (size_t i = 0; i < pixels.size(); ++i)
+        EXPECT_EQ(int(back.pixels[i] * 255.0f + 0.5f), int(pixels[i])) << "value " << i;
+}
+
+TEST(ImageIO, ExrKeepsFloats) {
+    std::vector<float> pixels = {0.0f, 0.25f, 1.5f, 1e4f};
+    const fs::path path = scratch("round.exr");
+    write_image(path, {2, 2, 1, PixelType::f32, pixels.data()});
+    FloatImage back = read_image(path);
+    ASSERT_EQ(back.pixels.size(), pixels.size());
+    for (size_t i = 0; i < pixels.size(); ++i) EXPECT_FLOAT_EQ(back.pixels[i], pixels[i]);
+}
+
+TEST(ImageIO, MissingDirectoryIsAnErrorAndLeavesNothing) {
+    std::vector<uint8_t> pixel(3, 0);
+    EXPECT_THROW(write_image(scratch("no/such/dir/x.png"), {1, 1, 3, PixelType::u8, pixel.data()}),
+                 Error);
+}
+
+TEST(ImageIO, UnknownExtensionIsAnError) {
+    std::vector<uint8_t> pixel(3, 0);
+    EXPECT_THROW(write_image(scratch("x.notaformat"), {1, 1, 3, PixelType::u8, pixel.data()}),
+                 Error);
+}
+
+TEST(ImageIO, FullDeviceIsAnErrorNotACrash) {
+    if (!fs::exists("/dev/full")) GTEST_SKIP() << "no /dev/full";
+    // A ".png" name for the full device: not a regular file, so it is written in place (a
+    // rename would replace the device) and the failed write must surface as an Error.
+    const fs::path link = scratch("full.png");
+    fs::remove(link);
+    fs::create_symlink("/dev/full", link);
+    std::vector<uint8_t> pixels(64 * 64 * 3, 128);
+    EXPECT_THROW(write_image(link, {64, 64, 3, PixelType::u8, pixels.data()}), Error);
+    EXPECT_TRUE(fs::is_character_file("/dev/full"));
+}
+
+TEST(ImageIO, FailedWriteLeavesNoTemporary) {
+    const fs::path dir = scratch("atomic");
+    fs::remove_all(dir);
+    fs::create_directories(dir);
+    std::vector<uint8_t> pixels(4 * 4 * 3, 9);
+    write_image(dir / "ok.png", {4, 4, 3, PixelType::u8, pixels.data()});
+    EXPECT_EQ(files_in(dir), 1u);  // the temporary was renamed, not left beside it
+    EXPECT_THROW(write_image(dir / "bad.png", {0, 4, 3, PixelType::u8, pixels.data()}), Error);
+    EXPECT_EQ(files_in(dir), 1u);
+}
+
+TEST(ImageIO, ReadingGarbageIsAnError) {
+    const fs::path path = scratch("garbage.png");
+    {
+        std::FILE* f = std::fopen(path.c_str(), "wb");
+        std::fputs("this is not a png", f);
+        std::fclose(f);
+    }
+    EXPECT_THROW(read_image(path), Error);
+    EXPECT_THROW(read_image(scratch("does_not_exist.png")), Error);
+}
+
+TEST(ImageIO, Tiff16RoundTripIsExact) {
+    std::vector<uint16_t> pixels = {0, 1, 32768, 65535, 1234, 4321};
+    const fs::path path = scratch("round.tif");
+    write_image(path, {3, 2, 1, PixelType::u16, pixels.data()});
+    FloatImage back = read_image(path);
+    ASSERT_EQ(back.pixels.size(), pixels.size());
+    for (size_t i = 0; i < pixels.size(); ++i)
+        EXPECT_EQ(int(back.pixels[i] * 65535.0f + 0.5f), int(pixels[i]));
+}
