@@ -7,6 +7,7 @@
 #include <stdexcept>
 #include <string>
 
+#include "raster/barycentrics.h"
 #include "raster/shade/background.h"
 #include "raster/shade/shade_kernel.h"
 
@@ -57,7 +58,7 @@ FrameShading::FrameShading(const BakedScene& baked, const Scene& scene, RenderSt
                       [&](const tbb::blocked_range<size_t>& r) {
         for (size_t i = r.begin(); i < r.end(); ++i) {
             const glm::vec4 c = vp * glm::vec4(mesh.positions[i], 1.0f);
-            clip_[i] = {c.x, c.y, c.w};
+            clip_[i] = c;
             if (!any_gouraud) continue;
             const Material& m = scene_.materials[baked_.vertex_material[i]];
             if (m.model != ShadingModel::gouraud) continue;
@@ -88,34 +89,32 @@ glm::vec4 FrameShading::background(int x, int y) const {
 }
 
 template <class F>
-void FrameShading::shade_with(std::span<const Fragment> fragments, std::span<glm::vec4> out) const {
-    if (out.size() != fragments.size())
+void FrameShading::shade_with(std::span<const CoveredPixel> pixels, std::span<glm::vec4> out) const {
+    if (out.size() != pixels.size())
         throw std::invalid_argument("shade: one output per fragment is needed");
     const Mesh& mesh = baked_.mesh;
     const size_t material_count = scene_.materials.size();
 
-    // Group by material, keeping the fragments' order within a group (counting sort); the
-    // last bucket collects fragments without a valid triangle.
+    // Group by material, keeping the pixels' order within a group (counting sort); the
+    // last bucket collects pixels without a valid triangle.
     std::vector<uint32_t> count(material_count + 2, 0);
-    const auto bucket = [&](const Fragment& f) {
+    const auto bucket = [&](const CoveredPixel& f) {
         return f.triangle < baked_.triangle_material.size() ? size_t(baked_.triangle_material[f.triangle])
                                                             : material_count;
     };
-    for (const Fragment& f : fragments) ++count[bucket(f) + 1];
+    for (const CoveredPixel& f : pixels) ++count[bucket(f) + 1];
     for (size_t i = 1; i < count.size(); ++i) count[i] += count[i - 1];
-    std::vector<uint32_t> order(fragments.size());
+    std::vector<uint32_t> order(pixels.size());
     {
         std::vector<uint32_t> next(count.begin(), count.end() - 1);
-        for (size_t i = 0; i < fragments.size(); ++i) order[next[bucket(fragments[i])]++] = uint32_t(i);
+        for (size_t i = 0; i < pixels.size(); ++i) order[next[bucket(pixels[i])]++] = uint32_t(i);
     }
-    for (size_t i = count[material_count]; i < fragments.size(); ++i)
-        out[order[i]] = background(fragments[order[i]].x, fragments[order[i]].y);
+    for (size_t i = count[material_count]; i < pixels.size(); ++i)
+        out[order[i]] = background(pixels[order[i]].x, pixels[order[i]].y);
 
     shade::KernelContext ctx;
     ctx.lights = state_.lights;
     ctx.eye = eye_;
-    ctx.dndc_dx = 2.0f / float(state_.width);
-    ctx.dndc_dy = -2.0f / float(state_.height);
     Lanes lanes;
     for (size_t mat = 0; mat < material_count; ++mat) {
         const Material& material = scene_.materials[mat];
@@ -124,19 +123,27 @@ void FrameShading::shade_with(std::span<const Fragment> fragments, std::span<glm
         ctx.normal = material.model == ShadingModel::gouraud ? nullptr : texture_of(scene_, material.normal_texture);
         for (size_t start = count[mat]; start < count[mat + 1]; start += kLanes) {
             const int n = int(std::min<size_t>(kLanes, count[mat + 1] - start));
+            uint32_t setup_for = kNoTriangle;  // consecutive pixels often share a triangle
+            PerspectiveBarycentrics setup{};
             for (int lane = 0; lane < kLanes; ++lane) {
-                // Idle lanes repeat the first fragment so every lane computes finite values.
-                const Fragment& f = fragments[order[start + size_t(lane < n ? lane : 0)]];
-                lanes.x[lane] = 2.0f * (float(f.x) + 0.5f) / float(state_.width) - 1.0f;
-                lanes.y[lane] = 1.0f - 2.0f * (float(f.y) + 0.5f) / float(state_.height);
+                // Idle lanes repeat the first pixel so every lane computes finite values.
+                const CoveredPixel& f = pixels[order[start + size_t(lane < n ? lane : 0)]];
+                const uint32_t* corner = &mesh.indices[3 * size_t(f.triangle)];
+                if (f.triangle != setup_for) {
+                    setup = PerspectiveBarycentrics::from_clip(clip_[corner[0]], clip_[corner[1]],
+                                                               clip_[corner[2]], state_.width, state_.height);
+                    setup_for = f.triangle;
+                }
+                lanes.x[lane] = float(f.x) + 0.5f;
+                lanes.y[lane] = float(f.y) + 0.5f;
                 for (int k = 0; k < 3; ++k) {
-                    const uint32_t vi = mesh.indices[3 * size_t(f.triangle) + size_t(k)];
+                    const uint32_t vi = corner[k];
                     const glm::vec3 p = mesh.positions[vi];
                     const glm::vec3 nrm = mesh.normals.empty() ? glm::vec3(0.0f) : mesh.normals[vi];
                     const glm::vec2 uv = mesh.uvs.empty() ? glm::vec2(0.0f) : mesh.uvs[vi];
                     const glm::vec3 col = gouraud_.empty() ? glm::vec3(0.0f) : gouraud_[vi];
                     for (int a = 0; a < 3; ++a) {
-                        lanes.clip[k][a][lane] = clip_[vi][a];
+                        lanes.bary[k][a][lane] = setup.e[k][a];
                         lanes.pos[k][a][lane] = p[a];
                         lanes.nrm[k][a][lane] = nrm[a];
                         lanes.col[k][a][lane] = col[a];
@@ -157,52 +164,46 @@ void FrameShading::shade_with(std::span<const Fragment> fragments, std::span<glm
     }
 }
 
-void FrameShading::shade(std::span<const Fragment> fragments, std::span<glm::vec4> out) const {
-    shade_with<simd::vfloat>(fragments, out);
+void FrameShading::shade(std::span<const CoveredPixel> pixels, std::span<glm::vec4> out) const {
+    shade_with<simd::vfloat>(pixels, out);
 }
 
-void FrameShading::shade_reference(std::span<const Fragment> fragments, std::span<glm::vec4> out) const {
-    shade_with<float>(fragments, out);
+void FrameShading::shade_reference(std::span<const CoveredPixel> pixels, std::span<glm::vec4> out) const {
+    shade_with<float>(pixels, out);
 }
 
 void shade_tile(const FrameShading& shading, const TileTarget& tile) {
-    std::vector<Fragment> fragments;
-    fragments.reserve(size_t(tile.width) * size_t(tile.height));
+    std::vector<CoveredPixel> pixels;
+    pixels.reserve(size_t(tile.width) * size_t(tile.height));
     for (int y = 0; y < tile.height; ++y) {
         const uint32_t* ids = tile.triangle + size_t(y) * tile.triangle_stride;
-        float* rgba = tile.rgba + size_t(y) * tile.rgba_stride * 4;
+        glm::vec4* colour = tile.colour + size_t(y) * tile.colour_stride;
         for (int x = 0; x < tile.width; ++x) {
             if (ids[x] != kNoTriangle) {
-                fragments.push_back({tile.x0 + x, tile.y0 + y, ids[x]});
+                pixels.push_back({tile.x0 + x, tile.y0 + y, ids[x]});
             } else {
-                const glm::vec4 b = shading.background(tile.x0 + x, tile.y0 + y);
-                for (int c = 0; c < 4; ++c) rgba[4 * x + c] = b[c];
+                colour[x] = shading.background(tile.x0 + x, tile.y0 + y);
             }
         }
     }
-    std::vector<glm::vec4> colours(fragments.size());
-    shading.shade(fragments, colours);
-    for (size_t i = 0; i < fragments.size(); ++i) {
-        const Fragment& f = fragments[i];
-        float* rgba = tile.rgba + size_t(f.y - tile.y0) * tile.rgba_stride * 4 + size_t(f.x - tile.x0) * 4;
+    std::vector<glm::vec4> colours(pixels.size());
+    shading.shade(pixels, colours);
+    for (size_t i = 0; i < pixels.size(); ++i) {
+        const CoveredPixel& f = pixels[i];
         // Opaque surfaces cover the pixel whatever their material's opacity (transparent
         // triangles never reach the visibility buffer; a ray caster's might).
-        const glm::vec4 c = colours[i];
-        rgba[0] = c.r;
-        rgba[1] = c.g;
-        rgba[2] = c.b;
-        rgba[3] = 1.0f;
+        tile.colour[size_t(f.y - tile.y0) * tile.colour_stride + size_t(f.x - tile.x0)] =
+            glm::vec4(glm::vec3(colours[i]), 1.0f);
     }
 }
 
-void blend_fragments(const FrameShading& shading, std::span<const Fragment> fragments, const TileTarget& tile) {
-    std::vector<glm::vec4> colours(fragments.size());
-    shading.shade(fragments, colours);
-    for (size_t i = 0; i < fragments.size(); ++i) {
-        const Fragment& f = fragments[i];
-        float* rgba = tile.rgba + size_t(f.y - tile.y0) * tile.rgba_stride * 4 + size_t(f.x - tile.x0) * 4;
-        const glm::vec4 blended = blend_over({rgba[0], rgba[1], rgba[2], rgba[3]}, colours[i]);
-        for (int c = 0; c < 4; ++c) rgba[c] = blended[c];
+void blend_pixels(const FrameShading& shading, std::span<const CoveredPixel> pixels, const TileTarget& tile) {
+    std::vector<glm::vec4> colours(pixels.size());
+    shading.shade(pixels, colours);
+    for (size_t i = 0; i < pixels.size(); ++i) {
+        const CoveredPixel& f = pixels[i];
+        glm::vec4& dst = tile.colour[size_t(f.y - tile.y0) * tile.colour_stride + size_t(f.x - tile.x0)];
+        dst = blend_over(dst, colours[i]);
     }
 }
 
@@ -223,8 +224,8 @@ Frame shade_visibility(const FrameShading& shading, const VisibilityBuffer& visi
         tile.height = std::min(kTile, s.height - tile.y0);
         tile.triangle = visibility.triangle.data() + size_t(tile.y0) * size_t(s.width) + size_t(tile.x0);
         tile.triangle_stride = size_t(s.width);
-        tile.rgba = &frame.at(tile.x0, tile.y0).r;
-        tile.rgba_stride = size_t(s.width);
+        tile.colour = &frame.at(tile.x0, tile.y0);
+        tile.colour_stride = size_t(s.width);
         shade_tile(shading, tile);
     });
     return frame;

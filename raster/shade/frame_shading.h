@@ -4,14 +4,12 @@
 // the tile rasterizer and the Embree ray caster feed it the same way.
 //
 // Per pixel it computes the perspective-correct barycentrics of the covering triangle at the
-// pixel centre from the clip-space corners (2D homogeneous rasterization, Olano and Greer
-// 1997: with c_k = (x, y, w) of corner k, lambda_i = (c_j x c_k) . (x_ndc, y_ndc, 1) and
-// b_i = lambda_i / sum(lambda) — the seed's "interpolate u/h, v/h, 1/h, then divide"), and
-// their screen-space derivatives analytically from the same plane equations
-// (d b_i / d x_ndc = (e_i.x - b_i sum(e.x)) / sum(lambda)), which select the mip level.
+// pixel centre from its clip-space corners (barycentrics.h: 2D homogeneous rasterization,
+// the seed's "interpolate u/h, v/h, 1/h, then divide" in closed form), and their screen-space
+// derivatives analytically from the same plane equations, which select the mip level.
 // Attributes are interpolated with b, then the material's model shades (lighting.h).
 //
-// The work is SIMD over pixels: fragments are grouped by material (counting sort, stable),
+// The work is SIMD over pixels: they are grouped by material (counting sort, stable),
 // and each group is shaded kLanes at a time with simd::vfloat; the same template kernel
 // instantiated with float is the scalar reference path (shade_reference).
 #pragma once
@@ -36,9 +34,9 @@ struct RenderState {
     std::vector<Light> lights;
 };
 
-// One covered sample to shade: pixel (x, y), rows top to bottom, and the triangle's id in the
-// baked mesh.
-struct Fragment {
+// One covered pixel to shade: pixel (x, y), rows top to bottom, and the id of the triangle
+// seen there in the baked mesh.
+struct CoveredPixel {
     int32_t x = 0;
     int32_t y = 0;
     uint32_t triangle = 0;
@@ -52,12 +50,12 @@ public:
     // not match the scene's materials.
     FrameShading(const BakedScene& baked, const Scene& scene, RenderState state);
 
-    // Linear RGBA of each fragment (alpha = material opacity x diffuse texture alpha), in any
-    // mix of triangles and materials; out.size() must equal fragments.size(). A fragment
+    // Linear RGBA of each pixel (alpha = material opacity x diffuse texture alpha), in any
+    // mix of triangles and materials; out.size() must equal pixels.size(). A pixel
     // whose triangle id is out of range gets the background.
-    void shade(std::span<const Fragment> fragments, std::span<glm::vec4> out) const;
+    void shade(std::span<const CoveredPixel> pixels, std::span<glm::vec4> out) const;
     // The same through the scalar instantiation of the kernel, one pixel at a time.
-    void shade_reference(std::span<const Fragment> fragments, std::span<glm::vec4> out) const;
+    void shade_reference(std::span<const CoveredPixel> pixels, std::span<glm::vec4> out) const;
 
     // The environment seen through pixel (x, y), alpha 1.
     glm::vec4 background(int x, int y) const;
@@ -67,14 +65,14 @@ public:
 
 private:
     template <class F>
-    void shade_with(std::span<const Fragment> fragments, std::span<glm::vec4> out) const;
+    void shade_with(std::span<const CoveredPixel> pixels, std::span<glm::vec4> out) const;
 
     const BakedScene& baked_;
     const Scene& scene_;
     RenderState state_;
     glm::vec3 eye_;
     glm::vec3 ray_x_, ray_y_, ray_z_;   // pixel ray = ray_x * x_ndc + ray_y * y_ndc + ray_z
-    std::vector<glm::vec3> clip_;       // (x, y, w) per vertex
+    std::vector<glm::vec4> clip_;       // clip-space position per vertex
     std::vector<glm::vec3> gouraud_;    // per vertex; empty when no material is Gouraud
 };
 
@@ -84,8 +82,8 @@ struct TileTarget {
     int x0 = 0, y0 = 0, width = 0, height = 0;
     const uint32_t* triangle = nullptr;  // kNoTriangle where nothing is visible
     size_t triangle_stride = 0;
-    float* rgba = nullptr;  // 4 floats per pixel
-    size_t rgba_stride = 0;
+    glm::vec4* colour = nullptr;  // linear RGBA
+    size_t colour_stride = 0;
 };
 
 // The opaque pass of a tile: visible pixels shaded, the others given the background.
@@ -97,10 +95,10 @@ inline glm::vec4 blend_over(glm::vec4 dst, glm::vec4 src) {
     return src * src.a + dst * (1.0f - src.a);
 }
 
-// The transparent pass of a tile: `fragments` (pixels inside the tile, already depth-tested
+// The transparent pass of a tile: `pixels` (inside the tile, already depth-tested
 // against the opaque pass) are shaded together, then blended one after another in the given
 // order — submission order — so the result is the same whatever the tiling and threads.
-void blend_fragments(const FrameShading& shading, std::span<const Fragment> fragments,
+void blend_fragments(const FrameShading& shading, std::span<const CoveredPixel> pixels,
                      const TileTarget& tile);
 
 // The opaque pass over a whole visibility buffer, tiles in parallel: how a renderer that

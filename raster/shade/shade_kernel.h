@@ -20,8 +20,8 @@ inline constexpr int kLanes = simd::kLanes;
 // The inputs of up to kLanes pixels that share one material, gathered per corner k of each
 // pixel's triangle, structure-of-arrays so that a vfloat load takes all lanes at once.
 struct alignas(64) Lanes {
-    float x[kLanes], y[kLanes];       // pixel centre in normalised device coordinates
-    float clip[3][3][kLanes];         // corner, clip (x, y, w)
+    float x[kLanes], y[kLanes];       // pixel centre in window coordinates (column + 0.5, row + 0.5)
+    float bary[3][3][kLanes];         // PerspectiveBarycentrics::e of the pixel's triangle
     float pos[3][3][kLanes];          // corner, world position
     float nrm[3][3][kLanes];          // corner, world normal (zero when the mesh has none)
     float uv[3][2][kLanes];           // corner, texture coordinates
@@ -38,8 +38,6 @@ struct KernelContext {
     const Texture* normal = nullptr;   // null: the interpolated normal
     std::span<const Light> lights;
     glm::vec3 eye{0.0f};
-    float dndc_dx = 0.0f;  // 2 / width: x_ndc per pixel
-    float dndc_dy = 0.0f;  // -2 / height: y_ndc per pixel (rows run down)
 };
 
 template <class F>
@@ -77,15 +75,14 @@ void shade_lanes(const KernelContext& ctx, Lanes& d, int lane) {
     const auto v3 = [&](const float (&a)[3][kLanes]) { return V{ld(a[0]), ld(a[1]), ld(a[2])}; };
     const F zero(0.0f), one(1.0f);
 
-    V c[3], p[3], n[3];
+    V p[3], n[3], e[3];
     for (int k = 0; k < 3; ++k) {
-        c[k] = v3(d.clip[k]);
+        e[k] = v3(d.bary[k]);
         p[k] = v3(d.pos[k]);
         n[k] = v3(d.nrm[k]);
     }
-    // Perspective-correct barycentrics from the 2D homogeneous edge functions.
+    // Perspective-correct barycentrics (barycentrics.h): r_i = e_i . (x, y, 1), b = r / sum(r).
     const V q{ld(d.x), ld(d.y), one};
-    const V e[3] = {cross(c[1], c[2]), cross(c[2], c[0]), cross(c[0], c[1])};
     const F lambda[3] = {dot(e[0], q), dot(e[1], q), dot(e[2], q)};
     const F sum = lambda[0] + lambda[1] + lambda[2];
     const F inv_sum = one / select(abs_of(sum) < F(1e-30f), one, sum);
@@ -108,13 +105,14 @@ void shade_lanes(const KernelContext& ctx, Lanes& d, int lane) {
     V kd = broadcast<F>(m.kd);
     F alpha(m.opacity);
     if (ctx.diffuse || ctx.normal) {
-        // uv and its derivatives per pixel step, from the barycentrics' plane equations.
+        // uv and its derivatives per pixel step, analytic from the same plane equations:
+        // d b_i / dx = (e_i.x - b_i sum(e.x)) / sum(r), and likewise for y.
         const F ax = e[0].x + e[1].x + e[2].x, ay = e[0].y + e[1].y + e[2].y;
         F u = zero, v = zero, udx = zero, vdx = zero, udy = zero, vdy = zero;
         for (int k = 0; k < 3; ++k) {
             const F uk = ld(d.uv[k][0]) * F(m.uv_scale.x), vk = ld(d.uv[k][1]) * F(m.uv_scale.y);
-            const F dbx = (e[k].x - b[k] * ax) * inv_sum * F(ctx.dndc_dx);
-            const F dby = (e[k].y - b[k] * ay) * inv_sum * F(ctx.dndc_dy);
+            const F dbx = (e[k].x - b[k] * ax) * inv_sum;
+            const F dby = (e[k].y - b[k] * ay) * inv_sum;
             u = fma(uk, b[k], u);
             v = fma(vk, b[k], v);
             udx = fma(uk, dbx, udx);
