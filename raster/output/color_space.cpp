@@ -11,6 +11,7 @@ float clamp01(float x) { return x > 0.0f ? (x < 1.0f ? x : 1.0f) : 0.0f; }  // N
 
 float linear_to_srgb(float linear) {
     const float c = clamp01(linear);
+    if (c >= 1.0f) return 1.0f;  // exact, where 1.055 - 0.055 rounds to 1 - 2^-24
     return c <= 0.0031308f ? 12.92f * c : 1.055f * std::pow(c, 1.0f / 2.4f) - 0.055f;
 }
 
