@@ -42,7 +42,8 @@ struct Options {
     int threads = 0;
     std::string out;
     bool list_presets = false;
-    float feed = NAN, kill = NAN, dt = 1.0f, anisotropy = 0.0f;
+    float feed = 0.0f, kill = 0.0f, dt = 1.0f, anisotropy = 0.0f;
+    bool feed_given = false, kill_given = false;  // override the preset's rates
     std::string boundary = "periodic";
     std::string init = "spots";
     std::string init_image;
@@ -129,8 +130,10 @@ int run_rd(const Options& o) {
     check_memory(width, height, 4 * 4 + 3 + (o.init_image.empty() ? 0 : 16), "reaction-diffusion state");
 
     tp::GrayScott params;
-    params.feed = std::isnan(o.feed) ? preset->feed : o.feed;
-    params.kill = std::isnan(o.kill) ? preset->kill : o.kill;
+    if (o.feed_given) require_finite(o.feed, "--feed");
+    if (o.kill_given) require_finite(o.kill, "--kill");
+    params.feed = o.feed_given ? o.feed : preset->feed;
+    params.kill = o.kill_given ? o.kill : preset->kill;
     require_finite(o.dt, "--dt");
     require_finite(o.anisotropy, "--anisotropy");
     params.dt = o.dt;
@@ -278,6 +281,8 @@ Run define_generate(CLI::App& root) {
     nm->add_flag("--wrap", o->wrap, "the height map tiles: differences wrap around the edges");
 
     return [o, rd, hf, nm]() -> int {
+        o->feed_given = rd->count("--feed") > 0;
+        o->kill_given = rd->count("--kill") > 0;
         if (rd->parsed()) return run_rd(*o);
         if (hf->parsed()) return run_heightfield(*o);
         if (nm->parsed()) return run_normalmap(*o);
