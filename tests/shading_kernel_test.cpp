@@ -5,6 +5,7 @@
 
 #include <glm/gtc/constants.hpp>
 
+#include "procedural/normal_map.h"
 #include "raster/geometry/param_surface.h"
 #include "raster/geometry/surfaces.h"
 #include "raster/shade/tangent_frame.h"
@@ -256,13 +257,21 @@ TEST(ShadingTransparency, BlendingFollowsSubmissionOrder) {
 }
 
 TEST(ShadingNormalMaps, FlatMapKeepsTheGeometricNormal) {
-    // A map of (0, 0, 1) everywhere ((128, 128, 255) in 8 bits) must not change the shading.
+    // The normal map of a flat height field (procedural/normal_map.h: (0, 0, 1) everywhere,
+    // (128, 128, 255) in 8 bits) must not change the shading.
+    const procedural::NormalMap flat = procedural::normal_map(procedural::Grid(16, 8, 0.3f), 8.0f,
+                                                              procedural::Boundary::periodic);
+    FloatImage encoded;
+    encoded.width = flat.width;
+    encoded.height = flat.height;
+    encoded.channels = 3;
+    for (float c : flat.xyz) encoded.pixels.push_back(c * 0.5f + 0.5f);
     Material m;
     m.kd = {0.7f, 0.5f, 0.3f};
     Scene plain = one_object(std::make_shared<const Mesh>(tessellate(sphere_surface({0, 0, 0}, 1.0f), 32, 16)), m);
     plain.lights = {point_light({2, 2, 3}, glm::vec3(0.1f), glm::vec3(1.0f))};
     Scene mapped = plain;
-    mapped.textures.emplace_back(4, 4, std::vector<glm::vec4>(16, glm::vec4(0.5f, 0.5f, 1.0f, 1.0f)));
+    mapped.textures.push_back(Texture::from_image(encoded, TexelEncoding::linear));
     mapped.materials[0].normal_texture = 0;
     const Frame a = test::render(plain, 64, 64), b = test::render(mapped, 64, 64);
     float worst = 0.0f;
