@@ -323,3 +323,37 @@ TEST(ShadingKernel, SimdMatchesTheScalarReference) {
     for (size_t i = 0; i < pixels.size(); ++i) worst = std::max(worst, glm::length(fast[i] - reference[i]));
     EXPECT_LT(worst, 1e-5f);
 }
+
+TEST(ShadingKernel, DegenerateInputsGiveFiniteColours) {
+    // Zero-length normals, a triangle collapsed to a point, NaN texture coordinates, a 1x1
+    // texture and a triangle id out of range: every output is finite, nothing crashes.
+    auto mesh = std::make_shared<Mesh>(*quad());
+    for (glm::vec3& n : mesh->normals) n = glm::vec3(0.0f);
+    mesh->uvs[0] = glm::vec2(NAN, INFINITY);
+    mesh->positions.push_back({0.2f, 0.2f, 0.0f});
+    mesh->normals.push_back(glm::vec3(0.0f));
+    mesh->uvs.push_back(glm::vec2(0.5f));
+    mesh->tangents.push_back(glm::vec4(1, 0, 0, 1));
+    const uint32_t p = uint32_t(mesh->positions.size() - 1);
+    mesh->indices.insert(mesh->indices.end(), {p, p, p});
+    Material m;
+    m.diffuse_texture = 0;
+    m.normal_texture = 0;
+    Scene scene = one_object(mesh, m);
+    scene.textures.emplace_back(1, 1, std::vector<glm::vec4>{glm::vec4(0.5f, 0.5f, 1.0f, 1.0f)});
+    const BakedScene baked = bake(scene);
+    const FrameShading shading(baked, scene, RenderState{scene.camera, 32, 32, scene.lights});
+    std::vector<CoveredPixel> pixels;
+    for (uint32_t t = 0; t < 4; ++t)
+        for (int x = 0; x < 32; x += 3) pixels.push_back({x, 16, t == 3 ? 12345u : t});
+    std::vector<glm::vec4> out(pixels.size()), ref(pixels.size());
+    shading.shade(pixels, out);
+    shading.shade_reference(pixels, ref);
+    for (size_t i = 0; i < out.size(); ++i)
+        for (int c = 0; c < 4; ++c) {
+            EXPECT_TRUE(std::isfinite(out[i][c])) << i;
+            EXPECT_TRUE(std::isfinite(ref[i][c])) << i;
+        }
+    // Without normals, the quad's pixels are lit with its face normal (facing the light).
+    EXPECT_GT(out[12].r, 0.1f);
+}
