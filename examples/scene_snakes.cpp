@@ -132,14 +132,14 @@ Scene snakes_scene() {
     s.materials.push_back(eye);
     const uint32_t eye_material = 1;
 
-    const std::array<SnakeParams, 3> snakes = {{{{-1.2f, 0.4f}, 0.35f, 2.6f, 2.2f, 0.0f},
-                                                {{1.3f, -0.5f}, 2.6f, 2.3f, 1.7f, 1.3f},
-                                                {{0.4f, 1.6f}, -0.2f, 2.0f, 2.7f, 2.4f}}};
+    const std::array<SnakeParams, 3> snakes = {{{{-1.2f, 0.5f}, 0.35f, 2.6f, 2.2f, 0.0f},
+                                                {{1.5f, -1.0f}, 2.8f, 2.3f, 1.7f, 1.3f},
+                                                {{0.4f, 1.7f}, -0.2f, 2.0f, 2.7f, 2.4f}}};
     const std::array<const char*, 3> skins = {"spots", "stripes", "worms"};
     for (size_t k = 0; k < snakes.size(); ++k) {
         s.textures.push_back(reaction_diffusion_texture(skins[k], 128, 2000, uint32_t(17 + k)));
         Material skin;
-        skin.ka = glm::vec3(0.45f, 0.42f, 0.38f);
+        skin.ka = glm::vec3(0.3f, 0.28f, 0.25f);
         skin.kd = glm::vec3(1.0f);
         skin.ks = glm::vec3(0.6f);  // white Blinn-Phong highlights
         skin.shine = 50.0f;
