@@ -1,7 +1,7 @@
 // `tessera render`: renders frames of a built-in example scene through the tile rasterizer and
 // the shading of raster/shade, writing each frame atomically.
 //   tessera render --scene NAME [--size WxH] [--time T] [--frames N --fps F] [--cull MODE]
-//                  [--threads N] [--stats] --out FILE
+//                  [--cube-map 'DIR/{face}.png'] [--threads N] [--stats] --out FILE
 // With --frames N > 1, FILE must hold one printf-style frame number ("f_%04d.png"); frame i
 // shows the scene at time T + i / F. The extension picks the encoding (frame.h: .png 8-bit sRGB,
 // .exr float linear, .tif 16-bit sRGB).
@@ -28,6 +28,7 @@ struct Options {
     float fps = 24.0f;
     std::string cull = "none";
     std::string out;
+    std::string cube_map;
     int threads = 0;
     bool stats = false;
 };
@@ -70,6 +71,10 @@ int run(const Options& o) {
     options.cull = o.cull == "back" ? CullMode::back : o.cull == "front" ? CullMode::front : CullMode::none;
     const auto limit = limit_threads(o.threads);
     Scene scene = examples::make_scene(o.scene);
+    if (!o.cube_map.empty()) {
+        scene.background.kind = Background::Kind::cube_map;
+        scene.background.cube = load_cube_map(o.cube_map);
+    }
     scene.camera.aspect = float(width) / float(height);
     SceneRenderer renderer;
     for (int i = 0; i < o.frames; ++i) {
@@ -98,6 +103,8 @@ Run define_render(CLI::App& root) {
         ->check(CLI::IsMember({"none", "back", "front"}))
         ->default_val("none");
     cmd->add_option("--out", o->out, "output image (.png, .exr, .tif); a %04d pattern for several frames");
+    cmd->add_option("--cube-map", o->cube_map,
+                    "environment from six images, e.g. 'sky/{face}.png' ({face}: px nx py ny pz nz)");
     cmd->add_flag("--stats", o->stats, "print per-frame counts and times");
     add_threads_option(*cmd, o->threads);
     return [o] { return run(*o); };

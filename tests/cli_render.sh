@@ -17,6 +17,14 @@ oiiotool --info "$dir/flag.png" | grep -q "96 x  *64" || fail "flag.png has the 
 for i in 000 001 002; do [ -s "$dir/toon_$i.exr" ] || fail "missing frame toon_$i.exr"; done
 "$tessera" render --scene flag --size 32x32 --out "$dir/flag.tif" || fail "tif exited $?"
 
+for face in px nx py ny pz nz; do
+    oiiotool --pattern constant:color=0.2,0.4,0.8 8x8 3 -d uint8 -o "$dir/sky_$face.png" || fail "oiiotool"
+done
+"$tessera" render --scene toon --size 32x32 --cube-map "$dir/sky_{face}.png" --out "$dir/cube.png" || fail "cube map exited $?"
+err=$("$tessera" render --scene toon --size 32x32 --cube-map "$dir/none_{face}.png" --out "$dir/x.png" 2>&1 >/dev/null); code=$?
+[ $code -eq 1 ] || fail "missing cube face exited $code, expected 1"
+grep -q "none_px.png" <<<"$err" || fail "missing face not named: $err"
+
 err=$("$tessera" render --scene nosuch --size 32x32 --out "$dir/x.png" 2>&1 >/dev/null); code=$?
 [ $code -eq 2 ] || fail "unknown scene exited $code, expected 2"
 grep -q "unknown scene 'nosuch'; valid scenes: flag, toon, bumpcube, snakes" <<<"$err" || fail "message: $err"
