@@ -1,6 +1,6 @@
 // `tessera render`: renders frames of a built-in example scene through the tile rasterizer and
 // the shading of raster/shade, writing each frame atomically.
-//   tessera render --scene NAME [--size WxH] [--time T] [--frames N --fps F] [--cull MODE]
+//   tessera render --scene NAME | --obj FILE [--model M] [--size WxH] [--time T] [--frames N --fps F] [--cull MODE]
 //                  [--cube-map 'DIR/{face}.png'] [--threads N] [--stats] --out FILE
 // With --frames N > 1, FILE must hold one printf-style frame number ("f_%04d.png"); frame i
 // shows the scene at time T + i / F. The extension picks the encoding (frame.h: .png 8-bit sRGB,
@@ -29,6 +29,8 @@ struct Options {
     std::string cull = "none";
     std::string out;
     std::string cube_map;
+    std::string obj;
+    std::string model = "phong";
     int threads = 0;
     bool stats = false;
 };
@@ -45,10 +47,10 @@ std::string frame_name(const std::string& pattern, int frames, int index) {
 }
 
 void check(const Options& o, int& width, int& height) {
-    if (o.scene.empty()) {
+    if (o.scene.empty() == o.obj.empty()) {
         std::string names;
         for (const std::string& n : examples::scene_names()) names += (names.empty() ? "" : ", ") + n;
-        throw UsageError("--scene NAME is required (" + names + ")");
+        throw UsageError("give either --scene NAME (" + names + ") or --obj FILE");
     }
     parse_size(o.size, "--size", width, height);
     if (o.out.empty()) throw UsageError("--out FILE is required");
@@ -70,7 +72,8 @@ int run(const Options& o) {
     SceneRenderOptions options;
     options.cull = o.cull == "back" ? CullMode::back : o.cull == "front" ? CullMode::front : CullMode::none;
     const auto limit = limit_threads(o.threads);
-    Scene scene = examples::make_scene(o.scene);
+    Scene scene = o.obj.empty() ? examples::make_scene(o.scene)
+                                : examples::obj_scene(o.obj, parse_shading_model(o.model));
     if (!o.cube_map.empty()) {
         scene.background.kind = Background::Kind::cube_map;
         scene.background.cube = load_cube_map(o.cube_map);
@@ -103,6 +106,9 @@ Run define_render(CLI::App& root) {
         ->check(CLI::IsMember({"none", "back", "front"}))
         ->default_val("none");
     cmd->add_option("--out", o->out, "output image (.png, .exr, .tif); a %04d pattern for several frames");
+    cmd->add_option("--obj", o->obj, "render a Wavefront OBJ file instead of a built-in scene");
+    cmd->add_option("--model", o->model, "shading model for --obj: flat, gouraud, phong or toon")
+        ->default_val("phong");
     cmd->add_option("--cube-map", o->cube_map,
                     "environment from six images, e.g. 'sky/{face}.png' ({face}: px nx py ny pz nz)");
     cmd->add_flag("--stats", o->stats, "print per-frame counts and times");

@@ -2,12 +2,14 @@
 
 #include <glm/gtc/constants.hpp>
 
+#include <cmath>
 #include <stdexcept>
 
 #include "examples/example_textures.h"
 #include "raster/geometry/box.h"
 #include "raster/geometry/param_surface.h"
 #include "raster/geometry/surfaces.h"
+#include "raster/obj_loader.h"
 
 namespace tessera::examples {
 namespace {
@@ -111,6 +113,41 @@ Scene bumpcube_scene() {
     };
     cube.animate(cube, 0.0f);
     s.objects.push_back(std::move(cube));
+    return s;
+}
+
+Scene obj_scene(const std::string& path, ShadingModel model) {
+    auto mesh = std::make_shared<Mesh>(load_obj(path));
+    glm::vec3 lo(INFINITY), hi(-INFINITY);
+    for (const glm::vec3& p : mesh->positions) {
+        lo = glm::min(lo, p);
+        hi = glm::max(hi, p);
+    }
+    Scene s;
+    s.camera.eye = {0.0f, 0.4f, 3.2f};
+    s.camera.fovy_deg = 40.0f;
+    s.background.kind = Background::Kind::sky;
+    s.lights = {point_light({2.0f, 3.0f, 3.0f}, glm::vec3(0.12f), glm::vec3(0.9f)),
+                directional_light({-1.0f, 0.3f, 0.5f}, glm::vec3(0.0f), glm::vec3(0.3f))};
+    Material m;
+    m.model = model;
+    m.ka = m.kd = {0.8f, 0.55f, 0.35f};
+    if (!mesh->uvs.empty() && model != ShadingModel::gouraud) {
+        std::vector<glm::vec4> texels(64 * 64);
+        for (int y = 0; y < 64; ++y)
+            for (int x = 0; x < 64; ++x)
+                texels[size_t(y * 64 + x)] = ((x / 8 + y / 8) & 1) ? glm::vec4(1.0f) : glm::vec4(0.55f, 0.6f, 0.7f, 1.0f);
+        s.textures.emplace_back(64, 64, std::move(texels));
+        m.diffuse_texture = 0;
+    }
+    s.materials.push_back(m);
+    Object o{"mesh", std::move(mesh), 0, {}, {}};
+    const float radius = 0.5f * glm::length(hi - lo);
+    if (radius > 0.0f && std::isfinite(radius)) {
+        o.transform.scale = glm::vec3(1.0f / radius);
+        o.transform.translation = -0.5f * (lo + hi) / radius;
+    }
+    s.objects.push_back(std::move(o));
     return s;
 }
 

@@ -25,6 +25,13 @@ err=$("$tessera" render --scene toon --size 32x32 --cube-map "$dir/none_{face}.p
 [ $code -eq 1 ] || fail "missing cube face exited $code, expected 1"
 grep -q "none_px.png" <<<"$err" || fail "missing face not named: $err"
 
+"$tessera" testmesh --kind sphere --count 500 --out "$dir/s.obj" >/dev/null || fail "testmesh exited $?"
+"$tessera" render --obj "$dir/s.obj" --model toon --size 48x32 --out "$dir/obj.png" || fail "--obj exited $?"
+err=$("$tessera" render --obj "$dir/nothing.obj" --size 32x32 --out "$dir/x.png" 2>&1 >/dev/null); code=$?
+[ $code -eq 1 ] || fail "missing OBJ exited $code, expected 1"
+err=$("$tessera" render --obj "$dir/s.obj" --scene flag --out "$dir/x.png" 2>&1 >/dev/null); code=$?
+[ $code -eq 2 ] || fail "--obj with --scene exited $code, expected 2"
+
 err=$("$tessera" render --scene nosuch --size 32x32 --out "$dir/x.png" 2>&1 >/dev/null); code=$?
 [ $code -eq 2 ] || fail "unknown scene exited $code, expected 2"
 grep -q "unknown scene 'nosuch'; valid scenes: flag, toon, bumpcube, snakes" <<<"$err" || fail "message: $err"
