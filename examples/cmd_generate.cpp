@@ -2,6 +2,7 @@
 //   tessera generate rd --preset NAME --size WxH --steps N [--seed S] [--threads N] --out FILE
 //   tessera generate rd --list-presets
 //   tessera generate heightfield --size WxH [--seed S] [--octaves K] [--threads N] --out FILE
+//                                [--relief fbm|ridged|warped|dunes] [--cells C] [--erode N]
 //   tessera generate normalmap --in HEIGHT --out FILE
 // Every file is written atomically (raster/image_io.h), so a failed or interrupted run leaves
 // nothing behind; every bad value is rejected before any work starts.
@@ -18,6 +19,7 @@
 
 #include "examples/command.h"
 #include "examples/progress.h"
+#include "procedural/erosion.h"
 #include "procedural/heightfield.h"
 #include "procedural/normal_map.h"
 #include "procedural/rd_color.h"
@@ -53,6 +55,7 @@ struct Options {
     float gain = 0.5f;
     std::string relief = "fbm";
     bool no_tile = false;
+    int erode = 0;
     // normalmap
     std::string in;
     float strength = 16.0f;
@@ -184,7 +187,7 @@ int run_heightfield(const Options& o) {
     int width = 0, height = 0;
     parse_size(o.size, "--size", width, height);
     check_output(o.out);
-    check_memory(width, height, 4 + 4, "heightfield");
+    check_memory(width, height, 3 * 4 + 4, "heightfield");
     tp::HeightfieldParams params;
     if (o.relief == "ridged") params.relief = tp::Relief::ridged;
     else if (o.relief == "warped") params.relief = tp::Relief::warped;
@@ -198,6 +201,13 @@ int run_heightfield(const Options& o) {
 
     const auto limit = limit_threads(o.threads);
     tp::Grid heights = tp::generate_heightfield(width, height, params);
+    if (o.erode > 0) {
+        tp::ThermalErosion erosion;
+        erosion.iterations = o.erode;
+        erosion.boundary = params.tileable && params.relief == tp::Relief::fbm ? tp::Boundary::periodic
+                                                                                : tp::Boundary::clamped;
+        tp::erode_thermal(heights, erosion);
+    }
     if (float_format(o.out)) {
         write_image(o.out, {width, height, 1, PixelType::f32, heights.values.data()});
     } else {
@@ -271,6 +281,9 @@ Run define_generate(CLI::App& root) {
         ->check(CLI::IsMember({"fbm", "ridged", "warped", "dunes"}))
         ->default_val("fbm");
     hf->add_flag("--no-tile", o->no_tile, "fbm without the periodic lattice");
+    hf->add_option("--erode", o->erode, "thermal erosion iterations (Olsen 2004)")
+        ->check(CLI::Range(0, 100000))
+        ->default_val(0);
     hf->add_option("--out", o->out, "output image (.png is 16-bit; .exr/.tif float)");
     add_threads_option(*hf, o->threads);
 

@@ -57,6 +57,9 @@ cmp -s "$dir/h1.png" "$dir/h2.png" || fail "heightfield differs between 1 and 2 
 [ "$(od -An -tu1 -j24 -N1 "$dir/h1.png" | tr -d ' ')" = 16 ] || fail "heightfield PNG is not 16-bit"
 "$tessera" generate heightfield --size 32x32 --relief dunes --out "$dir/d.exr" || fail "dunes EXR exited $?"
 [ -s "$dir/d.exr" ] || fail "no EXR written"
+"$tessera" generate heightfield --size 48x48 --erode 10 --out "$dir/eroded.tif" || fail "eroded heightfield exited $?"
+"$tessera" generate heightfield --size 48x48 --out "$dir/plain.tif" || fail "plain heightfield exited $?"
+cmp -s "$dir/plain.tif" "$dir/eroded.tif" && fail "--erode changed nothing"
 
 # Normal maps from a height map; a flat one is the flat blue (128,128,255).
 "$tessera" generate normalmap --in "$dir/h1.png" --out "$dir/n.png" || fail "normalmap exited $?"
