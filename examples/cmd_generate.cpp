@@ -1,5 +1,6 @@
 // `tessera generate rd | heightfield | normalmap`: the procedural generators as image files.
 //   tessera generate rd --preset NAME --size WxH --steps N [--seed S] [--threads N] --out FILE
+//   tessera generate rd ... --frames N --out 'rd_####.png'   (an animation of the growth)
 //   tessera generate rd --list-presets
 //   tessera generate heightfield --size WxH [--seed S] [--octaves K] [--threads N] --out FILE
 //                                [--relief fbm|ridged|warped|dunes] [--cells C] [--erode N]
@@ -40,6 +41,7 @@ struct Options {
     std::string preset = "spots";
     std::string size;
     int steps = -1;
+    int frames = 1;
     uint32_t seed = 1;
     int threads = 0;
     std::string out;
@@ -97,6 +99,30 @@ void check_memory(int width, int height, double bytes_per_cell, const char* what
 
 void require_finite(float value, const char* flag) {
     if (!std::isfinite(value)) throw UsageError(std::string(flag) + " must be a finite number");
+}
+
+// The file of frame `frame` (1-based) of `frames`: the last run of '#' in the file name becomes
+// the zero-padded frame number (Blender's convention), widened to fit the last frame; without
+// '#', "_0001" goes before the extension. A single frame is written to `pattern` as given.
+std::string frame_path(const std::string& pattern, int frame, int frames) {
+    if (frames == 1) return pattern;
+    const fs::path path(pattern);
+    std::string name = path.filename().string();
+    const std::string number = std::to_string(frame);
+    const size_t width_needed = std::to_string(frames).size();
+    auto padded = [&](size_t width) {
+        return std::string(width > number.size() ? width - number.size() : 0, '0') + number;
+    };
+    const size_t last = name.find_last_of('#');
+    if (last == std::string::npos) {
+        name = path.stem().string() + "_" + padded(std::max<size_t>(4, width_needed)) +
+               path.extension().string();
+    } else {
+        const size_t before = name.find_last_not_of('#', last);
+        const size_t start = before == std::string::npos ? 0 : before + 1;
+        name.replace(start, last - start + 1, padded(std::max(last - start + 1, width_needed)));
+    }
+    return (path.parent_path() / name).string();
 }
 
 int list_presets() {
@@ -170,15 +196,20 @@ int run_rd(const Options& o) {
     tp::ReactionDiffusion rd(params, std::move(initial));
     Progress progress("rd " + o.preset, o.steps, "steps");
     const int chunk = std::max(1, o.steps / 200);
-    for (int done = 0; done < o.steps;) {
-        const int n = std::min(chunk, o.steps - done);
-        rd.step(n);
-        done += n;
-        progress.update(done);
+    int done = 0;
+    // Frame f of F shows the pattern after steps * f / F steps (the last one after all of them).
+    for (int frame = 1; frame <= o.frames; ++frame) {
+        const int target = int(int64_t(o.steps) * frame / o.frames);
+        while (done < target) {
+            const int n = std::min(chunk, target - done);
+            rd.step(n);
+            done += n;
+            progress.update(done);
+        }
+        const std::vector<uint8_t> rgb = tp::rd_colorize(rd.state());
+        write_image(frame_path(o.out, frame, o.frames), {width, height, 3, PixelType::u8, rgb.data()});
     }
     progress.finish();
-    const std::vector<uint8_t> rgb = tp::rd_colorize(rd.state());
-    write_image(o.out, {width, height, 3, PixelType::u8, rgb.data()});
     return 0;
 }
 
@@ -253,6 +284,11 @@ Run define_generate(CLI::App& root) {
     rd->add_option("--size", o->size, "grid size WxH");
     rd->add_option("--steps", o->steps, "time steps")->check(CLI::Range(0, 100000000));
     rd->add_option("--seed", o->seed, "seed of the initial spots or noise")->default_val(1);
+    rd->add_option("--frames", o->frames,
+                   "write N frames of the growth, evenly spaced in time; '#'s in --out become the "
+                   "frame number (else _0001 is added)")
+        ->check(CLI::Range(1, 1000000))
+        ->default_val(1);
     rd->add_option("--out", o->out, "output image (.png, .exr, .tif)");
     rd->add_flag("--list-presets", o->list_presets, "list the presets and exit");
     rd->add_option("--feed", o->feed, "feed rate f (overrides the preset)");

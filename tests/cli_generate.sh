@@ -19,6 +19,16 @@ done
 [ "$(head -c 8 "$dir/rd1.png" | od -An -tx1 | tr -d ' \n')" = 89504e470d0a1a0a ] || fail "rd output is not a PNG"
 cmp -s "$dir/rd1.png" "$dir/rd2.png" || fail "rd output differs between 1 and 2 threads"
 
+# An animation: --frames N writes N files, '#' runs become the zero-padded frame number.
+"$tessera" generate rd --size 16x16 --steps 30 --frames 3 --out "$dir/anim/f_#.png" 2>/dev/null \
+  && fail "frames into a missing directory should fail"
+mkdir -p "$dir/anim"
+"$tessera" generate rd --size 16x16 --steps 30 --frames 3 --out "$dir/anim/f_#.png" || fail "--frames exited $?"
+[ "$(ls "$dir/anim")" = "$(printf 'f_1.png\nf_2.png\nf_3.png')" ] || fail "frame files: $(ls "$dir/anim")"
+cmp -s "$dir/anim/f_1.png" "$dir/anim/f_3.png" && fail "frames 1 and 3 are identical"
+"$tessera" generate rd --size 16x16 --steps 30 --out "$dir/single.png" || fail "rd exited $?"
+cmp -s "$dir/anim/f_3.png" "$dir/single.png" || fail "the last frame should equal a plain run of all the steps"
+
 # Bad input: one error line, exit 2, nothing written.
 expect_usage_error() {  # $1: what the message must mention; the rest: the command
   local want=$1; shift
