@@ -1,6 +1,6 @@
 // `tessera generate rd | heightfield | normalmap`: the procedural generators as image files.
 //   tessera generate rd --preset NAME --size WxH --steps N [--seed S] [--threads N] --out FILE
-//   tessera generate rd ... --frames N --out 'rd_####.png'   (an animation of the growth)
+//   tessera generate rd ... --frames N --out 'rd_####.png'  (the growth as an animation)
 //   tessera generate rd --list-presets
 //   tessera generate heightfield --size WxH [--seed S] [--octaves K] [--threads N] --out FILE
 //                                [--relief fbm|ridged|warped|dunes] [--cells C] [--erode N]
@@ -29,6 +29,7 @@
 #include "procedural/reaction_diffusion.h"
 #include "raster/error.h"
 #include "raster/image_io.h"
+#include "raster/output/frame_sequence.h"
 
 namespace tessera::cli {
 namespace {
@@ -101,30 +102,6 @@ void require_finite(float value, const char* flag) {
     if (!std::isfinite(value)) throw UsageError(std::string(flag) + " must be a finite number");
 }
 
-// The file of frame `frame` (1-based) of `frames`: the last run of '#' in the file name becomes
-// the zero-padded frame number (Blender's convention), widened to fit the last frame; without
-// '#', "_0001" goes before the extension. A single frame is written to `pattern` as given.
-std::string frame_path(const std::string& pattern, int frame, int frames) {
-    if (frames == 1) return pattern;
-    const fs::path path(pattern);
-    std::string name = path.filename().string();
-    const std::string number = std::to_string(frame);
-    const size_t width_needed = std::to_string(frames).size();
-    auto padded = [&](size_t width) {
-        return std::string(width > number.size() ? width - number.size() : 0, '0') + number;
-    };
-    const size_t last = name.find_last_of('#');
-    if (last == std::string::npos) {
-        name = path.stem().string() + "_" + padded(std::max<size_t>(4, width_needed)) +
-               path.extension().string();
-    } else {
-        const size_t before = name.find_last_not_of('#', last);
-        const size_t start = before == std::string::npos ? 0 : before + 1;
-        name.replace(start, last - start + 1, padded(std::max(last - start + 1, width_needed)));
-    }
-    return (path.parent_path() / name).string();
-}
-
 int list_presets() {
     std::printf("%-10s %-8s %-8s %s\n", "preset", "feed", "kill", "pattern");
     for (const tp::RdPreset& p : tp::rd_presets())
@@ -155,6 +132,11 @@ int run_rd(const Options& o) {
     int width = 0, height = 0;
     parse_size(o.size, "--size", width, height);
     check_output(o.out);
+    // Frame files follow the render command's patterns ("rd_####.png" or "rd_%04d.png").
+    const FramePattern pattern(o.out);
+    if (o.frames > 1 && !pattern.has_placeholder())
+        throw UsageError("--frames " + std::to_string(o.frames) + " needs a frame number placeholder in --out "
+                         "(#### or %04d), got '" + o.out + "'");
     // Two states of two float grids, the colour image, and an optional seed image.
     check_memory(width, height, 4 * 4 + 3 + (o.init_image.empty() ? 0 : 16), "reaction-diffusion state");
 
@@ -207,7 +189,8 @@ int run_rd(const Options& o) {
             progress.update(done);
         }
         const std::vector<uint8_t> rgb = tp::rd_colorize(rd.state());
-        write_image(frame_path(o.out, frame, o.frames), {width, height, 3, PixelType::u8, rgb.data()});
+        const fs::path file = o.frames > 1 ? pattern.path_for(frame) : fs::path(o.out);
+        write_image(file, {width, height, 3, PixelType::u8, rgb.data()});
     }
     progress.finish();
     return 0;
@@ -285,8 +268,8 @@ Run define_generate(CLI::App& root) {
     rd->add_option("--steps", o->steps, "time steps")->check(CLI::Range(0, 100000000));
     rd->add_option("--seed", o->seed, "seed of the initial spots or noise")->default_val(1);
     rd->add_option("--frames", o->frames,
-                   "write N frames of the growth, evenly spaced in time; '#'s in --out become the "
-                   "frame number (else _0001 is added)")
+                   "write N frames of the growth, evenly spaced in time; --out then needs a "
+                   "frame number placeholder (#### or %04d)")
         ->check(CLI::Range(1, 1000000))
         ->default_val(1);
     rd->add_option("--out", o->out, "output image (.png, .exr, .tif)");

@@ -19,7 +19,7 @@ done
 [ "$(head -c 8 "$dir/rd1.png" | od -An -tx1 | tr -d ' \n')" = 89504e470d0a1a0a ] || fail "rd output is not a PNG"
 cmp -s "$dir/rd1.png" "$dir/rd2.png" || fail "rd output differs between 1 and 2 threads"
 
-# An animation: --frames N writes N files, '#' runs become the zero-padded frame number.
+# An animation: --frames N writes N files, the '#' run becomes the zero-padded frame number.
 "$tessera" generate rd --size 16x16 --steps 30 --frames 3 --out "$dir/anim/f_#.png" 2>/dev/null \
   && fail "frames into a missing directory should fail"
 mkdir -p "$dir/anim"
@@ -47,6 +47,7 @@ expect_usage_error "WIDTHxHEIGHT" generate rd --size 0x8 --steps 1 --out "$dir/b
 expect_usage_error "out of range" generate rd --size 70000x8 --steps 1 --out "$dir/bad/x.png"
 expect_usage_error "GiB" generate rd --size 65536x65536 --steps 1 --out "$dir/bad/x.png"
 expect_usage_error "--out" generate rd --size 8x8 --steps 1
+expect_usage_error "placeholder" generate rd --size 8x8 --steps 2 --frames 2 --out "$dir/bad/x.png"
 expect_usage_error "no image format" generate heightfield --size 8x8 --out "$dir/bad/x.nope"
 expect_usage_error "--in" generate normalmap --out "$dir/bad/x.png"
 
