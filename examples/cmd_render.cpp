@@ -2,19 +2,20 @@
 // the shading of raster/shade, writing each frame atomically.
 //   tessera render --scene NAME | --obj FILE [--model M] [--size WxH] [--time T] [--frames N --fps F] [--cull MODE]
 //                  [--cube-map 'DIR/{face}.png'] [--threads N] [--stats] --out FILE
-// With --frames N > 1, FILE must hold one printf-style frame number ("f_%04d.png"); frame i
+// With --frames N > 1, FILE must hold one frame number ("f_####.png" or "f_%04d.png"); frame i
 // shows the scene at time T + i / F. The extension picks the encoding (frame.h: .png 8-bit sRGB,
 // .exr float linear, .tif 16-bit sRGB).
 #include <cstdio>
 #include <filesystem>
 #include <memory>
-#include <regex>
 #include <string>
 
 #include "examples/command.h"
 #include "examples/example_scenes.h"
 #include "raster/image_io.h"
 #include "raster/output/frame.h"
+#include "raster/output/frame_sequence.h"
+#include "raster/output/frame_writer.h"
 #include "raster/shade/scene_renderer.h"
 
 namespace tessera::cli {
@@ -35,17 +36,6 @@ struct Options {
     bool stats = false;
 };
 
-// The name of frame `index`: `pattern` with its single %d / %0Nd replaced.
-std::string frame_name(const std::string& pattern, int frames, int index) {
-    if (frames == 1) return pattern;
-    static const std::regex number("%(0[1-9])?d");
-    std::smatch m;
-    std::regex_search(pattern, m, number);
-    char digits[32];
-    std::snprintf(digits, sizeof digits, m[1].matched ? ("%0" + m[1].str().substr(1) + "d").c_str() : "%d", index);
-    return m.prefix().str() + digits + m.suffix().str();
-}
-
 void check(const Options& o, int& width, int& height) {
     if (o.scene.empty() == o.obj.empty()) {
         std::string names;
@@ -54,11 +44,8 @@ void check(const Options& o, int& width, int& height) {
     }
     parse_size(o.size, "--size", width, height);
     if (o.out.empty()) throw UsageError("--out FILE is required");
-    if (o.frames > 1) {
-        const std::regex one_number("[^%]*%(0[1-9])?d[^%]*");
-        if (!std::regex_match(o.out, one_number))
-            throw UsageError("--out '" + o.out + "' needs exactly one frame number like %04d when --frames > 1");
-    }
+    if (o.frames > 1 && !FramePattern(o.out).has_placeholder())
+        throw UsageError("--out '" + o.out + "' needs exactly one frame number (#### or %04d) when --frames > 1");
     if (!image_format_supported(o.out))
         throw UsageError("cannot write '" + o.out + "': no image format for extension '" +
                          std::filesystem::path(o.out).extension().string() + "' (use .png, .exr or .tif)");
@@ -80,17 +67,20 @@ int run(const Options& o) {
     }
     scene.camera.aspect = float(width) / float(height);
     SceneRenderer renderer;
+    const FramePattern pattern(o.out);
+    FrameWriter writer;  // encodes and writes frame i while frame i + 1 renders
     for (int i = 0; i < o.frames; ++i) {
         scene.animate(o.time + float(i) / o.fps);
         RasterStats stats;
         const Frame frame = renderer.render(scene, width, height, options, &stats);
-        const std::string path = frame_name(o.out, o.frames, i);
-        write_frame(path, frame);
+        const std::filesystem::path path = pattern.has_placeholder() ? pattern.path_for(i) : std::filesystem::path(o.out);
+        writer.submit(path, encode_frame(path, frame));
         if (o.stats)
             std::printf("%s: %llu triangles, %llu visible pixels, raster %.1f ms, shading %.1f ms, total %.1f ms\n",
-                        path.c_str(), (unsigned long long)stats.triangles, (unsigned long long)stats.visible_pixels,
+                        path.string().c_str(), (unsigned long long)stats.triangles, (unsigned long long)stats.visible_pixels,
                         stats.vertex_ms + stats.setup_bin_ms + stats.raster_ms, stats.passes_ms, stats.total_ms);
     }
+    writer.finish();
     return 0;
 }
 
@@ -105,7 +95,7 @@ Run define_render(CLI::App& root) {
     cmd->add_option("--cull", o->cull, "back-face culling: none, back or front")
         ->check(CLI::IsMember({"none", "back", "front"}))
         ->default_val("none");
-    cmd->add_option("--out", o->out, "output image (.png, .exr, .tif); a %04d pattern for several frames");
+    cmd->add_option("--out", o->out, "output image (.png, .exr, .tif); a #### or %04d pattern for several frames");
     cmd->add_option("--obj", o->obj, "render a Wavefront OBJ file instead of a built-in scene");
     cmd->add_option("--model", o->model, "shading model for --obj: flat, gouraud, phong or toon")
         ->default_val("phong");

@@ -13,7 +13,7 @@ for scene in flag toon bumpcube snakes; do
 done
 oiiotool --info "$dir/flag.png" | grep -q "96 x  *64" || fail "flag.png has the wrong size: $(oiiotool --info "$dir/flag.png")"
 
-"$tessera" render --scene toon --size 32x32 --frames 3 --fps 10 --out "$dir/toon_%03d.exr" || fail "frames exited $?"
+"$tessera" render --scene toon --size 32x32 --frames 3 --fps 10 --out "$dir/toon_###.exr" || fail "frames exited $?"
 for i in 000 001 002; do [ -s "$dir/toon_$i.exr" ] || fail "missing frame toon_$i.exr"; done
 "$tessera" render --scene flag --size 32x32 --out "$dir/flag.tif" || fail "tif exited $?"
 
