@@ -26,8 +26,9 @@ DepthPlane DepthPlane::from(const WindowVertex& v0, const WindowVertex& v1, cons
         p.c = v0.z;
         return p;
     }
-    const double a = (z1 * y2 - z2 * y1) / det;
-    const double b = (x1 * z2 - x2 * z1) / det;
+    const double inv_det = 1.0 / det;
+    const double a = (z1 * y2 - z2 * y1) * inv_det;
+    const double b = (x1 * z2 - x2 * z1) * inv_det;
     // Depth at the anchor pixel's centre.
     const double cx = (double(p.ax) + 0.5) - double(v0.X) / kSubpixels;
     const double cy = (double(p.ay) + 0.5) - double(v0.Y) / kSubpixels;
