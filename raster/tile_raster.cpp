@@ -76,6 +76,27 @@ inline void traverse_stamps(const DepthPlane& plane, const EdgeLanes (&e)[3], in
     }
 }
 
+// The stamps of a region entirely inside the triangle: every lane covered, depth only.
+template <class Sink>
+inline void fill_stamps(const DepthPlane& plane, int sx0, int sy0, int sx1, int sy1, const TileRect& tile,
+                        int tile_size, Sink&& sink) {
+    const vfloat lane_x = simd::to_float(simd::stamp_x());
+    const vfloat lane_y = simd::to_float(simd::stamp_y());
+    const vfloat a(plane.a), b(plane.b), c(plane.c);
+    const vmask all(true);
+    const unsigned stamps_per_row = unsigned(tile_size / kStampW);
+    for (int sy = sy0; sy <= sy1; sy += kStampH) {
+        const vfloat z_row = simd::fma(b, vfloat(float(sy - plane.ay)) + lane_y, c);
+        float fx = float(sx0 - plane.ax);
+        size_t index = (unsigned(sy - tile.y0) / kStampH * stamps_per_row + unsigned(sx0 - tile.x0) / kStampW) * kLanes;
+        for (int sx = sx0; sx <= sx1; sx += kStampW, index += kLanes, fx += float(kStampW)) {
+            vfloat z = simd::fma(a, vfloat(fx) + lane_x, z_row);
+            z = simd::min(simd::max(z, vfloat(0.0f)), vfloat(1.0f));
+            sink(index, sx, sy, all, z);
+        }
+    }
+}
+
 // F_i at pixel (x, y), from the setup's value at (minx, miny); exact in int64.
 int64_t edge_at(const TriangleSetup& t, int i, int x, int y) {
     return t.f[i] + int64_t(t.dx[i]) * (y - t.miny) - int64_t(t.dy[i]) * (x - t.minx);
@@ -103,6 +124,7 @@ inline void traverse(const TriangleSetup& t, const TileRect& tile, int tile_size
     for (int by = y0 & ~(kBlock - 1); by <= y1; by += kBlock) {
         for (int bx = x0 & ~(kBlock - 1); bx <= x1; bx += kBlock) {
             EdgeLanes lanes[3];
+            bool full[3] = {false, false, false};
             bool rejected = false;
             const int px0 = std::max(bx, sx0), py0 = std::max(by, sy0);
             for (int i = 0; i < 3 && !rejected; ++i) {
@@ -111,10 +133,15 @@ inline void traverse(const TriangleSetup& t, const TileRect& tile, int tile_size
                 const int64_t lo = f + std::min<int64_t>(0, -dy) * kSpan + std::min<int64_t>(0, dx) * kSpan;
                 const int64_t hi = f + std::max<int64_t>(0, -dy) * kSpan + std::max<int64_t>(0, dx) * kSpan;
                 if (hi < 0) rejected = true;
-                else if (lo >= 0) lanes[i] = accepted_edge();
+                else if (lo >= 0) lanes[i] = accepted_edge(), full[i] = true;
                 else lanes[i] = edge_lanes(int32_t(edge_at(t, i, px0, py0)), t.dx[i], t.dy[i]);
             }
             if (rejected) continue;
+            const int bx1 = std::min(bx + kBlock - 1, x1), by1 = std::min(by + kBlock - 1, y1);
+            if (full[0] && full[1] && full[2]) {  // inside the triangle: depth only
+                fill_stamps(t.depth, px0, py0, bx1, by1, tile, tile_size, sink);
+                continue;
+            }
             traverse_stamps(t.depth, lanes, px0, py0,
                             std::min(bx + kBlock - 1, x1), std::min(by + kBlock - 1, y1), tile,
                             tile_size, sink);
