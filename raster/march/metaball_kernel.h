@@ -7,9 +7,11 @@
 // - Perlin: the quintic fade on t = r/R, K = 1 - (6 t^5 - 15 t^4 + 10 t^3); in s,
 //   dK/ds = dK/dt / (2t) = -15 t (1 - t)^2, finite at the centre. C2 at 0 and R.
 // - Blinn "blobby": K = exp(-a s), infinite support. To let far balls be culled like the
-//   others it is truncated at R and shifted to stay continuous there:
-//   K = (exp(-a s) - exp(-a)) / (1 - exp(-a)) for s < 1, else 0. The default sharpness
-//   a = ln 1000 puts the cut where the untruncated tail is 1/1000 of the peak.
+//   others it is truncated at R, less its tangent line at the cut so that value and slope
+//   both reach 0 there (C1, like Wyvill's):
+//   K = (exp(-a s) - e (1 + a (1 - s))) / (1 - e (1 + a)), e = exp(-a), for s < 1, else 0.
+//   The default sharpness a = ln 1000 puts the cut where the untruncated tail is 1/1000 of
+//   the peak, so the correction is below 1 % of the kernel anywhere.
 #pragma once
 #include <cmath>
 
@@ -40,19 +42,20 @@ struct PerlinKernel {
     }
 };
 
-// Holds the precomputed shift and scale of the truncated exponential.
+// Holds the precomputed cut correction and scale of the truncated exponential.
 struct BlinnKernel {
     float sharpness;
-    float floor;  // exp(-sharpness)
-    float scale;  // 1 / (1 - exp(-sharpness))
+    float tail;   // exp(-a), the value at the cut
+    float scale;  // 1 / (1 - exp(-a) (1 + a))
 
     explicit BlinnKernel(float a)
-        : sharpness(a), floor(std::exp(-a)), scale(1.0f / (1.0f - std::exp(-a))) {}
+        : sharpness(a), tail(std::exp(-a)), scale(1.0f / (1.0f - std::exp(-a) * (1.0f + a))) {}
 
     KernelSample at(float s) const {
         if (s >= 1.0f) return {0.0f, 0.0f};
         const float e = std::exp(-sharpness * s);
-        return {(e - floor) * scale, -sharpness * e * scale};
+        return {(e - tail * (1.0f + sharpness * (1.0f - s))) * scale,
+                -sharpness * (e - tail) * scale};
     }
 };
 
