@@ -8,6 +8,7 @@
 #include <glm/glm.hpp>
 
 #include <concepts>
+#include <cstddef>
 
 #include "raster/march/ray_packet.h"
 
@@ -26,13 +27,21 @@ concept PacketField = ImplicitField<F> && requires(const F& field, const float* 
     field.values(c, c, c, out);
 };
 
-// Field values at kMarchLanes points: the field's own packet loop where it has one, otherwise
-// one value() per lane.
+// A field with a batch form over any count of points (the procedural/ fields' interface).
+template <class F>
+concept BatchField = ImplicitField<F> && requires(const F& field, const float* c, float* out) {
+    field.value_batch(size_t{1}, c, c, c, out);
+};
+
+// Field values at kMarchLanes points: the field's own packet or batch loop where it has one,
+// otherwise one value() per lane.
 template <ImplicitField F>
 inline void evaluate_lanes(const F& field, const float* x, const float* y, const float* z,
                            float* out) {
     if constexpr (PacketField<F>) {
         field.values(x, y, z, out);
+    } else if constexpr (BatchField<F>) {
+        field.value_batch(size_t(kMarchLanes), x, y, z, out);
     } else {
         for (int i = 0; i < kMarchLanes; ++i) out[i] = field.value(glm::vec3(x[i], y[i], z[i]));
     }
