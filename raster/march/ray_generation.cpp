@@ -10,7 +10,11 @@
 namespace tessera::march {
 
 RayGenerator::RayGenerator(const Camera& camera, int width, int height)
-    : eye_(camera.eye), width_(width), height_(height) {
+    : eye_(camera.eye),
+      forward_(glm::normalize(camera.lookat - camera.eye)),
+      far_(camera.far),
+      width_(width),
+      height_(height) {
     if (width <= 0 || height <= 0)
         throw std::invalid_argument("ray generation: image size " + std::to_string(width) + "x" +
                                     std::to_string(height) + " is not positive");

@@ -35,6 +35,9 @@ public:
     // depth >= 1, the cleared (empty) value: the fog treats it as the background at infinity.
     float distance_from_depth(int x, int y, float depth) const;
 
+    // Distance along the unit direction `d` to the far plane: no hit beyond it is visible.
+    float far_distance(glm::vec3 d) const { return far_ / glm::dot(d, forward_); }
+
     const glm::vec3& eye() const { return eye_; }
     int width() const { return width_; }
     int height() const { return height_; }
@@ -46,6 +49,8 @@ private:
     glm::mat4 view_projection_;  // world -> clip
     glm::mat4 inverse_view_projection_;
     glm::vec3 eye_;
+    glm::vec3 forward_;  // unit view direction
+    float far_;
     int width_;
     int height_;
 };
