@@ -26,7 +26,7 @@ struct Frame {
     std::vector<float> depth = std::vector<float>(W * H, 1.0f);
     std::vector<glm::vec4> colour = std::vector<glm::vec4>(W * H, glm::vec4(0.0f));
     PassTarget tile(int x0, int y0, int x1, int y1) {
-        return {x0, y0, x1, y1, depth.data() + y0 * W + x0, colour.data() + y0 * W + x0, W};
+        return {x0, y0, x1, y1, depth.data() + y0 * W + x0, W, colour.data() + y0 * W + x0, W};
     }
     PassTarget all() { return tile(0, 0, W, H); }
 };

@@ -22,6 +22,7 @@
 #include "raster/march/ray_generation.h"
 #include "raster/march/surface_normal.h"
 #include "raster/march/surface_shading.h"
+#include "raster/visibility.h"
 
 namespace tessera::march {
 
@@ -74,6 +75,9 @@ private:
             float& stored = target.depth_at(x0 + i, y);
             if (!(depth < stored) || !(depth >= 0.0f)) continue;  // behind, or before the near plane
             stored = depth;
+            if (target.triangle)
+                target.triangle[size_t(y - target.y0) * target.depth_stride + size_t(x0 + i - target.x0)] =
+                    kNoTriangle;
             const glm::vec3 n = surface_normal(field, p, look_.normals);
             const glm::vec3 c = shade_surface(look_.material, look_.light, environment_,
                                               packet.direction(i), n);
