@@ -74,18 +74,18 @@ void march_packet(const F& field, const RayPacket& rays, const PacketSegments& s
                   const MarchSettings& settings, float* t_hit) {
     constexpr int N = kMarchLanes;
     alignas(64) float t_prev[N], dt[N], growth[N], t[N], px[N], py[N], pz[N], v[N];
-    alignas(64) int active[N];  // 1 while the lane still marches
+    alignas(64) int active[N];  // -1 (all bits) while the lane still marches, else 0
     int live = 0;
     for (int i = 0; i < N; ++i) {
         t_hit[i] = kMiss;
         const Interval segment{segments.t0[i], segments.t1[i]};
-        active[i] = (i < rays.count && !segment.empty()) ? 1 : 0;
+        active[i] = (i < rays.count && !segment.empty()) ? -1 : 0;
         const MarchSettings::Schedule s =
             active[i] ? settings.schedule(segment) : MarchSettings::Schedule{0.0f, 1.0f};
         t_prev[i] = active[i] ? segment.t0 : 0.0f;
         dt[i] = s.first_step;
         growth[i] = s.growth;
-        live += active[i];
+        live -= active[i];
     }
     if (live == 0) return;
 
@@ -116,20 +116,19 @@ void march_packet(const F& field, const RayPacket& rays, const PacketSegments& s
             pz[i] = rays.oz[i] + rays.dz[i] * t[i];
         }
         evaluate_lanes(field, px, py, pz, v);
+        // Branch-free lane update on all-ones / zero int masks (no && or ifs, which GCC
+        // cannot if-convert), so it vectorises like the rest.
+        live = 0;
         for (int i = 0; i < N; ++i) {
-            if (!active[i]) continue;
-            if (v[i] >= 0.0f) {
-                found[i] = 1;
-                inside_t[i] = t[i];
-                active[i] = 0;
-                --live;
-            } else if (t[i] >= segments.t1[i]) {
-                active[i] = 0;  // left the bounds: a miss
-                --live;
-            } else {
-                t_prev[i] = t[i];
-                dt[i] *= growth[i];
-            }
+            const int inside = active[i] & -int(v[i] >= 0.0f);
+            const int left = active[i] & -int(t[i] >= segments.t1[i]);  // a miss
+            const int still = active[i] & ~inside & ~left;
+            found[i] |= inside;
+            inside_t[i] = inside ? t[i] : inside_t[i];
+            active[i] = still;
+            t_prev[i] = still ? t[i] : t_prev[i];
+            dt[i] = still ? dt[i] * growth[i] : dt[i];
+            live -= still;
         }
     }
 

@@ -111,6 +111,48 @@ Interval MetaballField::bounds(glm::vec3 o, glm::vec3 d, float t_far) const {
     return hull;
 }
 
+namespace {
+
+// The cone from a common origin that contains every live ray of a packet (primary rays share
+// the eye), so one test per ball can reject balls nowhere near the packet before the per-ray
+// tests. `valid` is false when the origins differ.
+struct PacketCone {
+    bool valid = false;
+    glm::vec3 apex{0.0f}, axis{0.0f};
+    float half_angle = 0.0f;
+};
+
+PacketCone packet_cone(const RayPacket& rays) {
+    PacketCone cone;
+    glm::vec3 sum(0.0f);
+    for (int i = 0; i < rays.count; ++i) {
+        if (rays.origin(i) != rays.origin(0)) return cone;
+        sum += rays.direction(i);
+    }
+    const float len = glm::length(sum);
+    if (!(len > 0.0f)) return cone;
+    cone.axis = sum / len;
+    float cos_half = 1.0f;
+    for (int i = 0; i < rays.count; ++i) cos_half = std::min(cos_half, glm::dot(rays.direction(i), cone.axis));
+    cone.apex = rays.origin(0);
+    cone.half_angle = std::acos(std::clamp(cos_half, -1.0f, 1.0f));
+    cone.valid = true;
+    return cone;
+}
+
+// True unless the sphere lies entirely outside the cone (conservative: a margin of 1e-3 rad
+// absorbs rounding, and a false "maybe" only costs the per-ray tests that follow).
+bool cone_may_touch(const PacketCone& cone, glm::vec3 centre, float radius) {
+    if (!cone.valid) return true;
+    const glm::vec3 v = centre - cone.apex;
+    const float dist = glm::length(v);
+    if (dist <= radius) return true;
+    const float angle = std::acos(std::clamp(glm::dot(v, cone.axis) / dist, -1.0f, 1.0f));
+    return angle <= cone.half_angle + std::asin(radius / dist) + 1e-3f;
+}
+
+}  // namespace
+
 void MetaballField::cull(const RayPacket& rays, float t_far, MetaballField& subset,
                          PacketSegments& segments) const {
     subset.style_ = style_;
@@ -118,9 +160,11 @@ void MetaballField::cull(const RayPacket& rays, float t_far, MetaballField& subs
     for (auto* v : {&subset.cx_, &subset.cy_, &subset.cz_, &subset.radius_, &subset.inv_r2_,
                     &subset.weight_})
         v->clear();
+    const PacketCone cone = packet_cone(rays);
     Interval hull[kMarchLanes];
     for (size_t b = 0; b < cx_.size(); ++b) {
         const glm::vec3 c(cx_[b], cy_[b], cz_[b]);
+        if (!cone_may_touch(cone, c, radius_[b])) continue;
         bool crossed = false;
         for (int i = 0; i < rays.count; ++i) {
             const Interval s = sphere_interval(rays.origin(i), rays.direction(i), c, radius_[b], t_far);
