@@ -74,8 +74,9 @@ SphereGridScene make_sphere_grid(size_t triangles, float aspect) {
             append_uv_sphere(mesh, {float(i) - offset, 0.5f, float(j) - offset}, kRadius,
                              scene.sphere_slices, scene.sphere_stacks);
     const float extent = float(scene.grid);
-    scene.camera.eye = {0.0f, 0.75f * extent, 1.1f * extent + 1.0f};
-    scene.camera.lookat = {0.0f, 0.0f, 0.0f};
+    // Close enough that the ground fills most of the frame, as in the anchors' measurement.
+    scene.camera.eye = {0.0f, 0.6f * extent + 0.5f, 0.55f * extent + 1.0f};
+    scene.camera.lookat = {0.0f, 0.0f, -0.1f * extent};
     scene.camera.aspect = aspect;
     scene.camera.near = 0.1f;
     scene.camera.far = 4.0f * extent + 10.0f;
