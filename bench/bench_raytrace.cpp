@@ -197,8 +197,55 @@ void update(benchmark::State& state, rt::BvhUpdate mode) {
                            benchmark::Counter::kIsIterationInvariantRate);
 }
 
+// The defect scan every update() repeats (NaN / bad index / zero-area triangles), part of
+// the refit and rebuild times above.
+void BM_MeshDefects(benchmark::State& state) {
+    Fixture& f = fixture(state.range(0));
+    const auto cap = cap_threads(state.range(3));
+    for (auto _ : state) benchmark::DoNotOptimize(rt::find_mesh_defects(f.grid.mesh));
+}
+
 void BM_BvhRefit(benchmark::State& state) { update(state, rt::BvhUpdate::refit); }
 void BM_BvhRebuild(benchmark::State& state) { update(state, rt::BvhUpdate::rebuild); }
+
+// One animated ray-cast frame: move the vertices (not timed), update the BVH, trace primary and
+// shadow rays. Reports the update's share of the timed frame (the "refit <= 10%" target).
+void animated_frame(benchmark::State& state, rt::BvhUpdate mode) {
+    const int64_t height = state.range(1);
+    Fixture& f = fixture(state.range(0));
+    SphereGridScene grid = f.grid;
+    rt::reserve_ray_padding(grid.mesh);
+    const auto cap = cap_threads(state.range(3));
+    rt::RayScene scene(rt::default_ray_device(), grid.mesh, mode);
+    const glm::mat4 vp = view_projection(f, height);
+    const std::vector<glm::vec3> light_list = lights(f, state.range(2));
+    const shadow::LightTest test = rt::shadow_ray_test(scene);
+    VisibilityBuffer vis;
+    using clock = std::chrono::steady_clock;
+    double update_s = 0.0, frame_s = 0.0;
+    float time = 0.0f;
+    for (auto _ : state) {
+        state.PauseTiming();
+        ripple_spheres(grid, time += 0.04f);
+        state.ResumeTiming();
+        const auto start = clock::now();
+        scene.update();
+        const auto updated = clock::now();
+        rt::cast_primary_rays(scene, vp, width_for(height), int(height), vis);
+        const auto mask = shadow::compute_light_mask(vis, grid.mesh, vp, light_list, test);
+        benchmark::DoNotOptimize(mask.bits.data());
+        update_s += std::chrono::duration<double>(updated - start).count();
+        frame_s += std::chrono::duration<double>(clock::now() - start).count();
+    }
+    state.counters["update_ms"] =
+        benchmark::Counter(update_s * 1e3, benchmark::Counter::kAvgIterations);
+    state.counters["update_share"] = update_s / frame_s;
+}
+
+void BM_AnimatedFrameRefit(benchmark::State& state) { animated_frame(state, rt::BvhUpdate::refit); }
+void BM_AnimatedFrameRebuild(benchmark::State& state) {
+    animated_frame(state, rt::BvhUpdate::rebuild);
+}
 
 // --- Sweeps ------------------------------------------------------------------------------------
 
@@ -248,7 +295,10 @@ TESSERA_SWEEP(BM_EmbreeFrame, triangle_sweep);
 TESSERA_SWEEP(BM_EmbreeFrame, light_sweep);
 TESSERA_SWEEP(BM_BvhBuildMedium, bvh_sweep);
 TESSERA_SWEEP(BM_BvhBuildLow, bvh_sweep);
+TESSERA_SWEEP(BM_MeshDefects, bvh_sweep);
 TESSERA_SWEEP(BM_BvhRefit, bvh_sweep);
 TESSERA_SWEEP(BM_BvhRebuild, bvh_sweep);
+TESSERA_SWEEP(BM_AnimatedFrameRefit, triangle_sweep);
+TESSERA_SWEEP(BM_AnimatedFrameRebuild, triangle_sweep);
 
 }  // namespace
