@@ -203,6 +203,10 @@ TEST(EmbreeDevice, ErrorsBecomeTesseraErrors) {
     EXPECT_NO_THROW(device.check("after the error was reported"));
 }
 
+TEST(EmbreeDevice, BuildsRunOnTheSharedOneTbbPool) {
+    EXPECT_TRUE(default_ray_device().shares_tbb());
+}
+
 TEST(EmbreeDevice, FlushDenormalsSetsAndRestoresTheThreadsMode) {
     const bool before = denormals_flushed();
     {

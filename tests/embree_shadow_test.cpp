@@ -2,11 +2,14 @@
 // self-shadowing on a plane, and the per-pixel light mask over a ray-cast frame.
 #include <gtest/gtest.h>
 
+#include <filesystem>
 #include <vector>
 
 #include "raster/embree/ray_cast.h"
 #include "raster/embree/scene.h"
 #include "raster/embree/shadow_rays.h"
+#include "raster/image_io.h"
+#include "raster/shadow/mask_compare.h"
 #include "raster/shadow/light_mask.h"
 #include "raster/sphere_grid.h"
 
@@ -143,6 +146,52 @@ TEST(EmbreeShadowMask, MoreLightsThanMaskBitsIsRejected) {
     EXPECT_THROW(shadow::compute_light_mask(vis, mesh, glm::mat4(1.0f), lights,
                                             shadow_ray_test(scene)),
                  std::invalid_argument);
+}
+
+
+TEST(ShadowMaskCompare, CountsDisagreementsAndExclusions) {
+    VisibilityBuffer vis;
+    vis.reset(4, 2);
+    for (size_t p = 0; p < 7; ++p) vis.triangle[p] = 0;  // pixel 7 is empty
+    shadow::LightMask a{4, 2, {1, 1, 0, 3, 2, 0, 1, 1}};
+    shadow::LightMask b{4, 2, {1, 0, 0, 3, 1, 1, 1, 0}};
+    shadow::LightMask exclude{4, 2, {0, 0, 0, 0, 0, 1, 0, 0}};
+    const auto plain = shadow::compare_light_masks(a, b, vis);
+    EXPECT_EQ(plain.compared, 7u);
+    EXPECT_EQ(plain.differ, 3u);      // pixels 1, 4, 5 (7 is empty)
+    EXPECT_EQ(plain.only_a_lit, 2u);  // 1 and 4
+    EXPECT_EQ(plain.only_b_lit, 2u);  // 4 and 5
+    const auto trimmed = shadow::compare_light_masks(a, b, vis, &exclude);
+    EXPECT_EQ(trimmed.compared, 6u);
+    EXPECT_EQ(trimmed.excluded, 1u);
+    EXPECT_EQ(trimmed.differ, 2u);
+    EXPECT_DOUBLE_EQ(trimmed.agreement(), 4.0 / 6.0);
+    shadow::LightMask small{2, 2, {0, 0, 0, 0}};
+    EXPECT_THROW(shadow::compare_light_masks(a, small, vis), std::invalid_argument);
+
+    const auto path = std::filesystem::path(::testing::TempDir()) / "embree_mask_diff.png";
+    shadow::write_mask_diff(path, a, b, vis, &exclude);
+    const FloatImage image = read_image(path);
+    ASSERT_EQ(image.width, 4);
+    EXPECT_EQ(image.at(0, 0, 0), image.at(0, 0, 2));  // agree, lit: grey
+    EXPECT_GT(image.at(0, 0, 0), 0.8f);
+    EXPECT_EQ(image.at(1, 0, 0), 1.0f);  // only a lit: red
+    EXPECT_EQ(image.at(1, 0, 2), 0.0f);
+    EXPECT_EQ(image.at(0, 1, 0), 1.0f);  // pixel 4: both ways: magenta
+    EXPECT_EQ(image.at(0, 1, 2), 1.0f);
+    EXPECT_EQ(image.at(3, 1, 0), 0.0f);  // empty: black
+    std::filesystem::remove(path);
+}
+
+TEST(ShadowMaskCompare, GrazingLightsMarksOnlyNearTangentLights) {
+    shadow::SurfacePoints points;
+    points.pixel = {0};
+    points.position = {{0.0f, 0.0f, 0.0f}};
+    points.normal = {{0.0f, 1.0f, 0.0f}};
+    const glm::vec3 lights[] = {{10.0f, 0.5f, 0.0f}, {0.0f, 10.0f, 0.0f}, {10.0f, -0.5f, 0.0f}};
+    std::vector<uint8_t> visible(1, 0);
+    shadow::grazing_lights(0.1f)(points, lights, visible);
+    EXPECT_EQ(visible[0], 1);  // 2.9 degrees above the plane; overhead and below are not
 }
 
 }  // namespace

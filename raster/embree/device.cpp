@@ -70,6 +70,10 @@ bool RayDevice::native_packet16() const {
     return rtcGetDeviceProperty(device_, RTC_DEVICE_PROPERTY_NATIVE_RAY16_SUPPORTED) != 0;
 }
 
+bool RayDevice::shares_tbb() const {
+    return rtcGetDeviceProperty(device_, RTC_DEVICE_PROPERTY_TASKING_SYSTEM) == 1;
+}
+
 const RayDevice& default_ray_device() {
     static const RayDevice device;
     return device;

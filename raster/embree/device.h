@@ -57,6 +57,10 @@ public:
     // splitting them into two 8-wide halves.
     bool native_packet16() const;
 
+    // Whether Embree schedules its BVH builds on oneTBB (RTC_DEVICE_PROPERTY_TASKING_SYSTEM
+    // 1), i.e. in the same thread pool as tessera's tiles rather than threads of its own.
+    bool shares_tbb() const;
+
 private:
     static void on_error(void* self, RTCError code, const char* message);
 
