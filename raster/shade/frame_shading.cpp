@@ -197,7 +197,7 @@ void shade_tile(const FrameShading& shading, const TileTarget& tile) {
     }
 }
 
-void blend_pixels(const FrameShading& shading, std::span<const CoveredPixel> pixels, const TileTarget& tile) {
+void blend_fragments(const FrameShading& shading, std::span<const CoveredPixel> pixels, const TileTarget& tile) {
     std::vector<glm::vec4> colours(pixels.size());
     shading.shade(pixels, colours);
     for (size_t i = 0; i < pixels.size(); ++i) {
