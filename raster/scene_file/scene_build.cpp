@@ -133,8 +133,10 @@ uint32_t material_index(const SceneSpec& spec, const std::string& name) {
 void add_snake(Scene& scene, const SceneSpec& spec, const ObjectSpec& o,
                const std::shared_ptr<const Ground>& ground) {
     const SnakeSpec snake = o.snake;
+    // Without a heightfield the snake lies on the plane y = its transform's translation.y.
+    const float plane = o.transform.translation.y;
     const GroundHeight height = ground ? GroundHeight([ground](float x, float z) { return ground->height(x, z); })
-                                       : GroundHeight();
+                                       : GroundHeight([plane](float, float) { return plane; });
     const uint32_t skin = material_index(spec, o.material);
     const uint32_t eye = snake.eye_material.empty() ? skin : material_index(spec, snake.eye_material);
 

@@ -93,7 +93,7 @@ struct SnakeSpec {
     float period_spread = 0.11f;
     float wave_phase = 0.9f;     // radians per control point
     glm::ivec2 tessellation{192, 20};  // along the body, around it
-    std::string ground;        // a heightfield object to lie on; empty: the plane y = 0
+    std::string ground;        // a heightfield object to lie on; empty: the plane y = transform.translate.y
     std::string eye_material;  // empty: the body's
 };
 
