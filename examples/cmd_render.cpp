@@ -17,6 +17,8 @@
 #include <csignal>
 #include <cstdio>
 #include <filesystem>
+#include <map>
+#include <set>
 #include <string>
 #include <vector>
 
@@ -89,6 +91,26 @@ void prepare_output_directory(const fs::path& first_file) {
         throw Error("cannot write frames to '" + dir.string() + "': permission denied");
 }
 
+// A run killed mid-write (SIGKILL, power loss) leaves its temporary ".NAME.tmpPID_N" beside
+// the frame (atomic_file.h). --resume removes those of its own frames: other shards render
+// other frames, so their temporaries have other names and are never touched.
+void remove_stale_temporaries(const std::vector<fs::path>& frames) {
+    std::map<fs::path, std::set<std::string>> names;  // directory -> frame file names
+    for (const fs::path& f : frames)
+        names[f.parent_path().empty() ? fs::path(".") : f.parent_path()].insert(f.filename().string());
+    std::error_code ec;
+    for (const auto& [dir, wanted] : names) {
+        std::vector<fs::path> stale;
+        for (const auto& entry : fs::directory_iterator(dir, ec)) {
+            const std::string n = entry.path().filename().string();
+            const size_t tmp = n.rfind(".tmp");
+            if (n.size() > 1 && n[0] == '.' && tmp != std::string::npos && wanted.count(n.substr(1, tmp - 1)))
+                stale.push_back(entry.path());
+        }
+        for (const fs::path& p : stale) fs::remove(p, ec);
+    }
+}
+
 std::string format_seconds(double s) {
     char buf[32];
     if (s >= 3600) std::snprintf(buf, sizeof buf, "%dh%02dm", int(s / 3600), int(s / 60) % 60);
@@ -132,13 +154,19 @@ int run(const Options& o, const std::string& executable) {
     const RendererKind renderer = parse_renderer(o.renderer);
     const ShadowMode shadows = parse_shadow_mode(o.shadows.empty() ? spec.shadows : o.shadows);
 
+    prepare_output_directory(pattern.path_for(range.first));
     std::vector<int> frames;
     int skipped = 0;
-    for (int f : frames_of_shard(range, shard)) {
+    const std::vector<int> shard_frames = frames_of_shard(range, shard);
+    if (o.resume) {
+        std::vector<fs::path> paths;
+        for (int f : shard_frames) paths.push_back(pattern.path_for(f));
+        remove_stale_temporaries(paths);
+    }
+    for (int f : shard_frames) {
         if (o.resume && image_is_complete(pattern.path_for(f), width, height)) ++skipped;
         else frames.push_back(f);
     }
-    prepare_output_directory(pattern.path_for(range.first));
 
     Trace trace;
     if (!o.trace.empty()) trace.activate();
