@@ -160,7 +160,7 @@ Frame FrameRenderer::Impl::render(float time, FrameStats& stats) {
     if (device) {
         TraceScope trace("bvh");
         const auto t0 = Clock::now();
-        rays.emplace(*device, baked.mesh);
+        rays.emplace(*device, baked.mesh, rt::BvhUpdate::rebuild);
         stats.bvh_ms = ms_since(t0);
     }
 
