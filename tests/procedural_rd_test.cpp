@@ -72,8 +72,9 @@ Blobs blobs(const tp::Grid& b, float threshold) {
 
 TEST(ProceduralRd, MatchesScalarReference) {
     for (tp::Boundary boundary : {tp::Boundary::periodic, tp::Boundary::clamped}) {
-        // Odd sizes and a 1-wide grid exercise the edge cells and the vector loop's remainder.
-        for (auto [w, h] : {std::pair{37, 23}, std::pair{1, 9}, std::pair{64, 2}}) {
+        // Odd sizes and a 1-wide grid exercise the edge cells and the vector loop's remainder;
+        // 1100 columns take the x-tiled fused path (512-wide tiles, a partial last one).
+        for (auto [w, h] : {std::pair{37, 23}, std::pair{1, 9}, std::pair{64, 2}, std::pair{1100, 13}}) {
             tp::GrayScott g = preset("spots");
             g.boundary = boundary;
             g.anisotropy = 0.3f;
@@ -115,6 +116,27 @@ TEST(ProceduralRd, BitIdenticalForOneAndTwoThreads) {
     ASSERT_EQ(results[0].a.size(), results[1].a.size());
     EXPECT_EQ(0, std::memcmp(results[0].a.values.data(), results[1].a.values.data(), results[0].a.size() * 4));
     EXPECT_EQ(0, std::memcmp(results[0].b.values.data(), results[1].b.values.data(), results[0].b.size() * 4));
+}
+
+// step(n) fuses steps band by band (temporal blocking); single steps do not. Both compute
+// every cell with the same code from the same neighbours, so they agree bit for bit.
+TEST(ProceduralRd, FusedStepsEqualSingleSteps) {
+    for (tp::Boundary boundary : {tp::Boundary::periodic, tp::Boundary::clamped}) {
+        for (auto [w, h] : {std::pair{200, 150}, std::pair{1030, 40}}) {  // row tiles, x tiles
+            tp::GrayScott g = preset("coral");
+            g.boundary = boundary;
+            tp::Grid feed(w, h, 0.05f);
+            feed.at(w / 2, h / 2) = 0.03f;
+            g.feed_map = w > 1000 ? &feed : nullptr;
+            tp::ReactionDiffusion fused(g, tp::rd_initial_spots(w, h, 2, 0, 6));
+            tp::ReactionDiffusion single = fused;
+            fused.step(23);
+            for (int i = 0; i < 23; ++i) single.step(1);
+            const size_t bytes = size_t(w) * h * 4;
+            EXPECT_EQ(0, std::memcmp(fused.state().a.values.data(), single.state().a.values.data(), bytes)) << w;
+            EXPECT_EQ(0, std::memcmp(fused.state().b.values.data(), single.state().b.values.data(), bytes)) << w;
+        }
+    }
 }
 
 TEST(ProceduralRd, EveryPresetStaysFiniteAndInUnitRange) {

@@ -27,7 +27,7 @@ const char* kBallOverFloor = R"({
   "materials": {"grey": {"model": "phong", "kd": [0.6, 0.6, 0.6], "ka": [0.5, 0.5, 0.5], "ks": [0, 0, 0]},
                 "red": {"model": "phong", "kd": [0.8, 0.1, 0.1]}},
   "objects": [
-    {"type": "box", "material": "grey", "size": [6, 0.2, 6], "tessellation": [4, 4], "transform": {"translate": [0, -1.1, 0]}},
+    {"type": "box", "material": "grey", "size": [6, 0.2, 6], "transform": {"translate": [0, -1.1, 0]}},
     {"type": "sphere", "material": "red", "radius": 0.5, "tessellation": [32, 16], "centre": [0, 0, 0]}
   ]
 })";

@@ -5,6 +5,7 @@
 
 #include <glm/gtc/constants.hpp>
 
+#include "procedural/normal_map.h"
 #include "raster/geometry/param_surface.h"
 #include "raster/geometry/surfaces.h"
 #include "raster/shade/tangent_frame.h"
@@ -256,13 +257,21 @@ TEST(ShadingTransparency, BlendingFollowsSubmissionOrder) {
 }
 
 TEST(ShadingNormalMaps, FlatMapKeepsTheGeometricNormal) {
-    // A map of (0, 0, 1) everywhere ((128, 128, 255) in 8 bits) must not change the shading.
+    // The normal map of a flat height field (procedural/normal_map.h: (0, 0, 1) everywhere,
+    // (128, 128, 255) in 8 bits) must not change the shading.
+    const procedural::NormalMap flat = procedural::normal_map(procedural::Grid(16, 8, 0.3f), 8.0f,
+                                                              procedural::Boundary::periodic);
+    FloatImage encoded;
+    encoded.width = flat.width;
+    encoded.height = flat.height;
+    encoded.channels = 3;
+    for (float c : flat.xyz) encoded.pixels.push_back(c * 0.5f + 0.5f);
     Material m;
     m.kd = {0.7f, 0.5f, 0.3f};
     Scene plain = one_object(std::make_shared<const Mesh>(tessellate(sphere_surface({0, 0, 0}, 1.0f), 32, 16)), m);
     plain.lights = {point_light({2, 2, 3}, glm::vec3(0.1f), glm::vec3(1.0f))};
     Scene mapped = plain;
-    mapped.textures.emplace_back(4, 4, std::vector<glm::vec4>(16, glm::vec4(0.5f, 0.5f, 1.0f, 1.0f)));
+    mapped.textures.push_back(Texture::from_image(encoded, TexelEncoding::linear));
     mapped.materials[0].normal_texture = 0;
     const Frame a = test::render(plain, 64, 64), b = test::render(mapped, 64, 64);
     float worst = 0.0f;
@@ -313,4 +322,38 @@ TEST(ShadingKernel, SimdMatchesTheScalarReference) {
     float worst = 0.0f;
     for (size_t i = 0; i < pixels.size(); ++i) worst = std::max(worst, glm::length(fast[i] - reference[i]));
     EXPECT_LT(worst, 1e-5f);
+}
+
+TEST(ShadingKernel, DegenerateInputsGiveFiniteColours) {
+    // Zero-length normals, a triangle collapsed to a point, NaN texture coordinates, a 1x1
+    // texture and a triangle id out of range: every output is finite, nothing crashes.
+    auto mesh = std::make_shared<Mesh>(*quad());
+    for (glm::vec3& n : mesh->normals) n = glm::vec3(0.0f);
+    mesh->uvs[0] = glm::vec2(NAN, INFINITY);
+    mesh->positions.push_back({0.2f, 0.2f, 0.0f});
+    mesh->normals.push_back(glm::vec3(0.0f));
+    mesh->uvs.push_back(glm::vec2(0.5f));
+    mesh->tangents.push_back(glm::vec4(1, 0, 0, 1));
+    const uint32_t p = uint32_t(mesh->positions.size() - 1);
+    mesh->indices.insert(mesh->indices.end(), {p, p, p});
+    Material m;
+    m.diffuse_texture = 0;
+    m.normal_texture = 0;
+    Scene scene = one_object(mesh, m);
+    scene.textures.emplace_back(1, 1, std::vector<glm::vec4>{glm::vec4(0.5f, 0.5f, 1.0f, 1.0f)});
+    const BakedScene baked = bake(scene);
+    const FrameShading shading(baked, scene, RenderState{scene.camera, 32, 32, scene.lights});
+    std::vector<CoveredPixel> pixels;
+    for (uint32_t t = 0; t < 4; ++t)
+        for (int x = 0; x < 32; x += 3) pixels.push_back({x, 16, t == 3 ? 12345u : t});
+    std::vector<glm::vec4> out(pixels.size()), ref(pixels.size());
+    shading.shade(pixels, out);
+    shading.shade_reference(pixels, ref);
+    for (size_t i = 0; i < out.size(); ++i)
+        for (int c = 0; c < 4; ++c) {
+            EXPECT_TRUE(std::isfinite(out[i][c])) << i;
+            EXPECT_TRUE(std::isfinite(ref[i][c])) << i;
+        }
+    // Without normals, the quad's pixels are lit with its face normal (facing the light).
+    EXPECT_GT(out[12].r, 0.1f);
 }

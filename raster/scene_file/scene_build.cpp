@@ -10,6 +10,7 @@
 #include "procedural/rd_initial.h"
 #include "procedural/rd_presets.h"
 #include "procedural/reaction_diffusion.h"
+#include "raster/geometry/box.h"
 #include "raster/geometry/param_surface.h"
 #include "raster/geometry/surfaces.h"
 #include "raster/scene_file/scene_file_error.h"
@@ -59,34 +60,6 @@ Texture build_texture(const TextureSpec& t, const std::filesystem::path& scene_f
     } catch (const Error& e) {
         throw SceneFileError(scene_file.string() + ": /textures/" + t.name + ": " + e.what());
     }
-}
-
-void append(Mesh& into, const Mesh& m) {
-    const uint32_t base = uint32_t(into.positions.size());
-    into.positions.insert(into.positions.end(), m.positions.begin(), m.positions.end());
-    into.normals.insert(into.normals.end(), m.normals.begin(), m.normals.end());
-    into.uvs.insert(into.uvs.end(), m.uvs.begin(), m.uvs.end());
-    into.tangents.insert(into.tangents.end(), m.tangents.begin(), m.tangents.end());
-    for (uint32_t i : m.indices) into.indices.push_back(base + i);
-}
-
-// Six grids, one per face: p = n h_n + a (u - 1/2) size_a + b (v - 1/2) size_b with a x b = n,
-// so tessellate() winds each face to look outwards and its tangent dr/du runs along a.
-Mesh box_mesh(glm::vec3 size, glm::ivec2 grid) {
-    Mesh box;
-    const glm::vec3 axes[3] = {{1, 0, 0}, {0, 1, 0}, {0, 0, 1}};
-    for (int axis = 0; axis < 3; ++axis)
-        for (float sign : {1.0f, -1.0f}) {
-            const glm::vec3 n = axes[axis] * sign;
-            const glm::vec3 a = axes[(axis + 1) % 3] * sign;
-            const glm::vec3 b = axes[(axis + 2) % 3];
-            const float ha = glm::dot(glm::abs(a), size), hb = glm::dot(glm::abs(b), size);
-            const float hn = glm::dot(glm::abs(n), size) * 0.5f;
-            append(box, tessellate([=](float u, float v) {
-                       return SurfacePoint{n * hn + a * ((u - 0.5f) * ha) + b * ((v - 0.5f) * hb), a * ha, b * hb, n};
-                   }, grid.x, grid.y));
-        }
-    return box;
 }
 
 // A heightfield object's samples, kept for the snakes that lie on it.
@@ -260,7 +233,7 @@ AnimatedScene build_scene(SceneSpec spec) {
                 break;
             }
             case ObjectSpec::Shape::box:
-                object.geometry = std::make_shared<const Mesh>(box_mesh(o.box_size, g));
+                object.geometry = std::make_shared<const Mesh>(box_mesh(0.5f * o.box_size));
                 break;
             case ObjectSpec::Shape::heightfield: {
                 auto ground = std::make_shared<Ground>();

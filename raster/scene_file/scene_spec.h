@@ -114,7 +114,8 @@ struct ObjectSpec {
     // flag (seeds/000's waving flag: phase = wave_speed * time)
     glm::vec2 flag_size{2.0f, 1.2f};
     float flag_depth = 0.1f, flag_waves = 3.0f, wave_speed = 3.0f;
-    // box: an axis-aligned box of `box_size` centred on the origin, each face a grid
+    // box: an axis-aligned box of `box_size` centred on the origin (geometry/box.h: one quad
+    // per face; `tessellation` does not apply)
     glm::vec3 box_size{1.0f};
     HeightfieldSpec heightfield;
     SnakeSpec snake;

@@ -6,10 +6,13 @@
 namespace tessera {
 namespace {
 
+// Repeat: coordinates arrive reduced to [0, 1) by safe_coordinate, so a texel index lies in
+// [-1, size] and one conditional add or subtract wraps it (no integer modulo per fetch).
 int wrap_index(int i, int size, TextureWrap wrap) {
     if (wrap == TextureWrap::clamp) return std::clamp(i, 0, size - 1);
-    const int m = i % size;
-    return m < 0 ? m + size : m;
+    if (i < 0) i += size;
+    if (i >= size) i -= size;
+    return std::clamp(i, 0, size - 1);  // guards the rounding of u * size at u just below 1
 }
 
 // Large or non-finite coordinates would overflow the int conversion; reduce them first.
