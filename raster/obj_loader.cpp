@@ -4,6 +4,8 @@
 
 #include <charconv>
 #include <cstdio>
+#include <cstring>
+#include <string_view>
 #include <tuple>
 #include <cmath>
 #include <fstream>
@@ -29,35 +31,48 @@ bool good(double v) { return std::isfinite(v) && std::fabs(v) <= kMaxObjCoordina
 // (NaN, infinite or huge).
 std::vector<uint8_t> check_records(const std::string& text, const std::string& name) {
     std::vector<uint8_t> bad_positions;
-    std::istringstream in(text);
-    std::string line;
-    for (size_t number = 1; std::getline(in, line); ++number) {
+    const char* p = text.data();
+    const char* const end = p + text.size();
+    auto blank = [](char c) { return c == ' ' || c == '\t' || c == '\r'; };
+    for (size_t number = 1; p < end; ++number) {
+        const char* eol = static_cast<const char*>(std::memchr(p, '\n', size_t(end - p)));
+        if (!eol) eol = end;
+        // Tokens of this line, up to a comment.
+        auto next = [&](std::string_view& token) {
+            while (p < eol && blank(*p)) ++p;
+            if (p == eol || *p == '#') return false;
+            const char* start = p;
+            while (p < eol && !blank(*p)) ++p;
+            token = std::string_view(start, size_t(p - start));
+            return true;
+        };
         const auto where = [&] { return "line " + std::to_string(number) + ": "; };
-        std::istringstream fields(line);
-        std::string keyword, token;
-        if (!(fields >> keyword)) continue;
-        if (keyword == "f") {
-            size_t corners = 0;
-            while (fields >> token && token[0] != '#') ++corners;
-            if (corners < 3) fail(name, where() + "a face needs at least 3 vertices, found " + std::to_string(corners));
-            continue;
+        std::string_view keyword, token;
+        if (next(keyword)) {
+            if (keyword == "f") {
+                size_t corners = 0;
+                while (next(token)) ++corners;
+                if (corners < 3)
+                    fail(name, where() + "a face needs at least 3 vertices, found " + std::to_string(corners));
+            } else if (keyword == "v" || keyword == "vn" || keyword == "vt") {
+                const size_t need = keyword == "vt" ? 1 : 3;
+                size_t count = 0;
+                bool bad = false;
+                while (next(token)) {
+                    double value;
+                    auto [ptr, ec] = std::from_chars(token.data(), token.data() + token.size(), value);
+                    if (ptr != token.data() + token.size() ||
+                        (ec != std::errc() && ec != std::errc::result_out_of_range))
+                        fail(name, where() + "'" + std::string(token) + "' is not a number");
+                    if (count < 3) bad |= ec == std::errc::result_out_of_range || !good(value);
+                    ++count;
+                }
+                if (count < need)
+                    fail(name, where() + "expected " + std::to_string(need) + " numbers, found " + std::to_string(count));
+                if (keyword == "v") bad_positions.push_back(bad);
+            }
         }
-        const size_t need = keyword == "v" || keyword == "vn" ? 3 : keyword == "vt" ? 1 : 0;
-        if (need == 0) continue;
-        size_t count = 0;
-        bool bad = false;
-        while (fields >> token && token[0] != '#') {
-            double value;
-            const char* end = token.data() + token.size();
-            auto [ptr, ec] = std::from_chars(token.data(), end, value);
-            if (ptr != end || (ec != std::errc() && ec != std::errc::result_out_of_range))
-                fail(name, where() + "'" + token + "' is not a number");
-            if (count < 3) bad |= ec == std::errc::result_out_of_range || !good(value);
-            ++count;
-        }
-        if (count < need)
-            fail(name, where() + "expected " + std::to_string(need) + " numbers, found " + std::to_string(count));
-        if (keyword == "v") bad_positions.push_back(bad);
+        p = eol + 1;
     }
     return bad_positions;
 }

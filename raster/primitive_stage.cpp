@@ -41,18 +41,21 @@ void run_primitive_stage(const Mesh& mesh, const ClipVertices& v, const Viewport
             continue;
         }
         const uint8_t transparent = any_transparent && options.transparent[t] ? 1 : 0;
-        TriangleSetup setup;
         if (codes == 0) {
+            // Set up in place; dropped again when not drawn.
+            TriangleSetup& setup = out.emplace_back();
             const SetupResult result = setup_triangle({v.X[i0], v.Y[i0], v.Z[i0]}, {v.X[i1], v.Y[i1], v.Z[i1]},
                                                       {v.X[i2], v.Y[i2], v.Z[i2]}, options.cull, viewport, setup);
             count(result, stats);
             if (result == SetupResult::drawn) {
                 setup.triangle = t;
                 setup.transparent = transparent;
-                out.push_back(setup);
+            } else {
+                out.pop_back();
             }
             continue;
         }
+        TriangleSetup setup;
         ++stats.clipped;
         const glm::vec4 in[3] = {v.clip(i0), v.clip(i1), v.clip(i2)};
         glm::vec4 polygon[kMaxClippedVertices];
