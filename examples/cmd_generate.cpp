@@ -1,7 +1,9 @@
 // `tessera generate rd | heightfield | normalmap`: the procedural generators as image files.
 //   tessera generate rd --preset NAME --size WxH --steps N [--seed S] [--threads N] --out FILE
+//   tessera generate rd ... --frames N --out 'rd_####.png'  (the growth as an animation)
 //   tessera generate rd --list-presets
 //   tessera generate heightfield --size WxH [--seed S] [--octaves K] [--threads N] --out FILE
+//                                [--relief fbm|ridged|warped|dunes] [--cells C] [--erode N]
 //   tessera generate normalmap --in HEIGHT --out FILE
 // Every file is written atomically (raster/image_io.h), so a failed or interrupted run leaves
 // nothing behind; every bad value is rejected before any work starts.
@@ -18,6 +20,7 @@
 
 #include "examples/command.h"
 #include "examples/progress.h"
+#include "procedural/erosion.h"
 #include "procedural/heightfield.h"
 #include "procedural/normal_map.h"
 #include "procedural/rd_color.h"
@@ -26,6 +29,7 @@
 #include "procedural/reaction_diffusion.h"
 #include "raster/error.h"
 #include "raster/image_io.h"
+#include "raster/output/frame_sequence.h"
 
 namespace tessera::cli {
 namespace {
@@ -38,6 +42,7 @@ struct Options {
     std::string preset = "spots";
     std::string size;
     int steps = -1;
+    int frames = 1;
     uint32_t seed = 1;
     int threads = 0;
     std::string out;
@@ -53,6 +58,7 @@ struct Options {
     float gain = 0.5f;
     std::string relief = "fbm";
     bool no_tile = false;
+    int erode = 0;
     // normalmap
     std::string in;
     float strength = 16.0f;
@@ -126,6 +132,11 @@ int run_rd(const Options& o) {
     int width = 0, height = 0;
     parse_size(o.size, "--size", width, height);
     check_output(o.out);
+    // Frame files follow the render command's patterns ("rd_####.png" or "rd_%04d.png").
+    const FramePattern pattern(o.out);
+    if (o.frames > 1 && !pattern.has_placeholder())
+        throw UsageError("--frames " + std::to_string(o.frames) + " needs a frame number placeholder in --out "
+                         "(#### or %04d), got '" + o.out + "'");
     // Two states of two float grids, the colour image, and an optional seed image.
     check_memory(width, height, 4 * 4 + 3 + (o.init_image.empty() ? 0 : 16), "reaction-diffusion state");
 
@@ -167,15 +178,21 @@ int run_rd(const Options& o) {
     tp::ReactionDiffusion rd(params, std::move(initial));
     Progress progress("rd " + o.preset, o.steps, "steps");
     const int chunk = std::max(1, o.steps / 200);
-    for (int done = 0; done < o.steps;) {
-        const int n = std::min(chunk, o.steps - done);
-        rd.step(n);
-        done += n;
-        progress.update(done);
+    int done = 0;
+    // Frame f of F shows the pattern after steps * f / F steps (the last one after all of them).
+    for (int frame = 1; frame <= o.frames; ++frame) {
+        const int target = int(int64_t(o.steps) * frame / o.frames);
+        while (done < target) {
+            const int n = std::min(chunk, target - done);
+            rd.step(n);
+            done += n;
+            progress.update(done);
+        }
+        const std::vector<uint8_t> rgb = tp::rd_colorize(rd.state());
+        const fs::path file = o.frames > 1 ? pattern.path_for(frame) : fs::path(o.out);
+        write_image(file, {width, height, 3, PixelType::u8, rgb.data()});
     }
     progress.finish();
-    const std::vector<uint8_t> rgb = tp::rd_colorize(rd.state());
-    write_image(o.out, {width, height, 3, PixelType::u8, rgb.data()});
     return 0;
 }
 
@@ -184,7 +201,7 @@ int run_heightfield(const Options& o) {
     int width = 0, height = 0;
     parse_size(o.size, "--size", width, height);
     check_output(o.out);
-    check_memory(width, height, 4 + 4, "heightfield");
+    check_memory(width, height, 3 * 4 + 4, "heightfield");
     tp::HeightfieldParams params;
     if (o.relief == "ridged") params.relief = tp::Relief::ridged;
     else if (o.relief == "warped") params.relief = tp::Relief::warped;
@@ -198,6 +215,13 @@ int run_heightfield(const Options& o) {
 
     const auto limit = limit_threads(o.threads);
     tp::Grid heights = tp::generate_heightfield(width, height, params);
+    if (o.erode > 0) {
+        tp::ThermalErosion erosion;
+        erosion.iterations = o.erode;
+        erosion.boundary = params.tileable && params.relief == tp::Relief::fbm ? tp::Boundary::periodic
+                                                                                : tp::Boundary::clamped;
+        tp::erode_thermal(heights, erosion);
+    }
     if (float_format(o.out)) {
         write_image(o.out, {width, height, 1, PixelType::f32, heights.values.data()});
     } else {
@@ -243,6 +267,11 @@ Run define_generate(CLI::App& root) {
     rd->add_option("--size", o->size, "grid size WxH");
     rd->add_option("--steps", o->steps, "time steps")->check(CLI::Range(0, 100000000));
     rd->add_option("--seed", o->seed, "seed of the initial spots or noise")->default_val(1);
+    rd->add_option("--frames", o->frames,
+                   "write N frames of the growth, evenly spaced in time; --out then needs a "
+                   "frame number placeholder (#### or %04d)")
+        ->check(CLI::Range(1, 1000000))
+        ->default_val(1);
     rd->add_option("--out", o->out, "output image (.png, .exr, .tif)");
     rd->add_flag("--list-presets", o->list_presets, "list the presets and exit");
     rd->add_option("--feed", o->feed, "feed rate f (overrides the preset)");
@@ -271,6 +300,9 @@ Run define_generate(CLI::App& root) {
         ->check(CLI::IsMember({"fbm", "ridged", "warped", "dunes"}))
         ->default_val("fbm");
     hf->add_flag("--no-tile", o->no_tile, "fbm without the periodic lattice");
+    hf->add_option("--erode", o->erode, "thermal erosion iterations (Olsen 2004)")
+        ->check(CLI::Range(0, 100000))
+        ->default_val(0);
     hf->add_option("--out", o->out, "output image (.png is 16-bit; .exr/.tif float)");
     add_threads_option(*hf, o->threads);
 

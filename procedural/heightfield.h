@@ -15,7 +15,7 @@ struct HeightfieldParams {
     Fractal fractal{8, 2.0f, 0.5f, 0};
     int cells = 4;         // octave-0 lattice cells across the width (feature size = width/cells)
     bool tileable = true;  // fbm only: the lattice repeats, so the map wraps seamlessly
-    float warp = 1.0f;     // Relief::warped amount, in octave-0 cells
+    float warp = 0.4f;     // Relief::warped amount, in octave-0 cells
     Dunes dunes{};         // Relief::dunes (wavelength in octave-0 cells)
 };
 

@@ -5,8 +5,10 @@
 // dt = 1. Explicit Euler with double buffering (Jacobi: every cell of step t+1 reads only
 // step t), so the result is bit-identical whatever the tiling or thread count.
 //
-// Parallel over blocks of rows with oneTBB; within a row the interior cells run in a loop GCC
-// vectorises (SIMD over x); the two edge cells of each row take the boundary rule.
+// Parallel over tiles with oneTBB; within a row the interior cells run in a loop GCC
+// vectorises (SIMD over x); the edge cells take the boundary rule. Runs of steps are
+// temporally blocked (4 steps per tile in L2-sized scratch, see reaction_diffusion.cpp), which
+// takes large grids past the DRAM bandwidth limit of one pass per step.
 #pragma once
 #include <cstdint>
 
@@ -54,7 +56,8 @@ public:
     // Validates params against the state's size; the state is the initial condition.
     ReactionDiffusion(const GrayScott& params, RdState initial);
 
-    // Advances `steps` time steps (each one parallel over rows).
+    // Advances `steps` time steps. The result is the same, bit for bit, however the steps are
+    // split across calls and whatever the thread count.
     void step(int steps = 1);
 
     const RdState& state() const { return current_; }

@@ -19,6 +19,16 @@ done
 [ "$(head -c 8 "$dir/rd1.png" | od -An -tx1 | tr -d ' \n')" = 89504e470d0a1a0a ] || fail "rd output is not a PNG"
 cmp -s "$dir/rd1.png" "$dir/rd2.png" || fail "rd output differs between 1 and 2 threads"
 
+# An animation: --frames N writes N files, the '#' run becomes the zero-padded frame number.
+"$tessera" generate rd --size 16x16 --steps 30 --frames 3 --out "$dir/anim/f_#.png" 2>/dev/null \
+  && fail "frames into a missing directory should fail"
+mkdir -p "$dir/anim"
+"$tessera" generate rd --size 16x16 --steps 30 --frames 3 --out "$dir/anim/f_#.png" || fail "--frames exited $?"
+[ "$(ls "$dir/anim")" = "$(printf 'f_1.png\nf_2.png\nf_3.png')" ] || fail "frame files: $(ls "$dir/anim")"
+cmp -s "$dir/anim/f_1.png" "$dir/anim/f_3.png" && fail "frames 1 and 3 are identical"
+"$tessera" generate rd --size 16x16 --steps 30 --out "$dir/single.png" || fail "rd exited $?"
+cmp -s "$dir/anim/f_3.png" "$dir/single.png" || fail "the last frame should equal a plain run of all the steps"
+
 # Bad input: one error line, exit 2, nothing written.
 expect_usage_error() {  # $1: what the message must mention; the rest: the command
   local want=$1; shift
@@ -37,6 +47,7 @@ expect_usage_error "WIDTHxHEIGHT" generate rd --size 0x8 --steps 1 --out "$dir/b
 expect_usage_error "out of range" generate rd --size 70000x8 --steps 1 --out "$dir/bad/x.png"
 expect_usage_error "GiB" generate rd --size 65536x65536 --steps 1 --out "$dir/bad/x.png"
 expect_usage_error "--out" generate rd --size 8x8 --steps 1
+expect_usage_error "placeholder" generate rd --size 8x8 --steps 2 --frames 2 --out "$dir/bad/x.png"
 expect_usage_error "no image format" generate heightfield --size 8x8 --out "$dir/bad/x.nope"
 expect_usage_error "--in" generate normalmap --out "$dir/bad/x.png"
 
@@ -57,6 +68,9 @@ cmp -s "$dir/h1.png" "$dir/h2.png" || fail "heightfield differs between 1 and 2 
 [ "$(od -An -tu1 -j24 -N1 "$dir/h1.png" | tr -d ' ')" = 16 ] || fail "heightfield PNG is not 16-bit"
 "$tessera" generate heightfield --size 32x32 --relief dunes --out "$dir/d.exr" || fail "dunes EXR exited $?"
 [ -s "$dir/d.exr" ] || fail "no EXR written"
+"$tessera" generate heightfield --size 48x48 --erode 10 --out "$dir/eroded.tif" || fail "eroded heightfield exited $?"
+"$tessera" generate heightfield --size 48x48 --out "$dir/plain.tif" || fail "plain heightfield exited $?"
+cmp -s "$dir/plain.tif" "$dir/eroded.tif" && fail "--erode changed nothing"
 
 # Normal maps from a height map; a flat one is the flat blue (128,128,255).
 "$tessera" generate normalmap --in "$dir/h1.png" --out "$dir/n.png" || fail "normalmap exited $?"
