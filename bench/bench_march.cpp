@@ -173,7 +173,8 @@ BENCHMARK(BM_FogPass)->Arg(0)->Arg(1)->ArgName("height");
 
 void BM_BackgroundSky(benchmark::State& state) {
     const RayGenerator rays(view({0.0f, 1.0f, 4.0f}, {0, 0, 0}), W, H);
-    const Environment sky = Environment::procedural(Sky{});
+    Background sky;
+    sky.kind = Background::Kind::sky;
     const BackgroundPass pass(rays, sky);
     std::vector<float> depth(W * H, 1.0f);
     std::vector<glm::vec4> colour(W * H);
