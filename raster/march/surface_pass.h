@@ -29,7 +29,8 @@ namespace tessera::march {
 
 struct SurfaceLook {
     SurfaceMaterial material{};
-    std::vector<Light> lights{directional_light({0.4f, 0.55f, -0.73f}, glm::vec3(0.12f), glm::vec3(1.0f))};
+    // A sun above and behind the viewer's right shoulder for views towards -z.
+    std::vector<Light> lights{directional_light({0.5f, 0.8f, 0.6f}, glm::vec3(0.12f), glm::vec3(1.0f))};
     NormalSettings normals{};
 };
 
