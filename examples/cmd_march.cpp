@@ -1,5 +1,5 @@
 // `tessera march`: renders one frame of a ray-marched scene (seeds/003: terrain, 16-sine noise,
-// noise volume, metaballs) with background and fog, through the rasterizer's tile stage, and
+// value-noise volume, gradient-noise surface, metaballs) with background and fog, through the rasterizer's tile stage, and
 // writes it as an image.
 //
 //   tessera march --scene metaballs --kernel blinn --balls 6 --time 2.5 -o blobs.png
@@ -50,7 +50,7 @@ struct MarchOptions {
 Run define_march(CLI::App& root) {
     auto o = std::make_shared<MarchOptions>();
     CLI::App* cmd = root.add_subcommand("march", "render a ray-marched implicit surface with fog (seeds/003)");
-    cmd->add_option("--scene", o->scene, "terrain | sine-noise | noise-volume | metaballs")->capture_default_str();
+    cmd->add_option("--scene", o->scene, "terrain | sine-noise | noise-volume | gradient-noise | metaballs")->capture_default_str();
     cmd->add_option("--time", o->time, "animation time in seconds")->capture_default_str();
     cmd->add_option("--kernel", o->kernel, "metaball kernel: blinn | perlin | wyvill")->capture_default_str();
     cmd->add_option("--balls", o->balls, "metaball count (at least 3)")->capture_default_str();

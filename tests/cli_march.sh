@@ -7,7 +7,7 @@ fail() { echo "FAIL: $*"; exit 1; }
 dir=$(mktemp -d)
 trap 'rm -rf "$dir"' EXIT
 
-for scene in metaballs terrain sine-noise noise-volume; do
+for scene in metaballs terrain sine-noise noise-volume gradient-noise; do
     "$tessera" march --scene "$scene" --size 64x36 --strategy geometric --fog-density 0.02 \
         -o "$dir/$scene.png" >/dev/null || fail "$scene exited $?"
     [ -s "$dir/$scene.png" ] || fail "$scene wrote no image"

@@ -18,9 +18,10 @@ MarchSceneKind parse_march_scene(const std::string& name) {
     if (name == "terrain") return MarchSceneKind::terrain;
     if (name == "sine-noise") return MarchSceneKind::sine_noise;
     if (name == "noise-volume") return MarchSceneKind::noise_volume;
+    if (name == "gradient-noise") return MarchSceneKind::gradient_noise;
     if (name == "metaballs") return MarchSceneKind::metaballs;
     throw std::invalid_argument("unknown march scene '" + name +
-                                "' (expected terrain, sine-noise, noise-volume or metaballs)");
+                                "' (expected terrain, sine-noise, noise-volume, gradient-noise or metaballs)");
 }
 
 // The fields live here so the passes can borrow them for the scene's lifetime.
@@ -28,6 +29,7 @@ struct MarchScene::Fields {
     std::unique_ptr<procedural::TerrainField> terrain;
     std::unique_ptr<procedural::SineNoiseField> sine_noise;
     std::unique_ptr<procedural::NoiseVolumeField> volume;
+    GradientNoiseField gradient_noise;
     std::unique_ptr<MetaballField> metaballs;
 };
 
@@ -59,6 +61,7 @@ Camera scene_camera(MarchSceneKind kind, float t, float aspect) {
         c.lookat = {0.5f + 0.3f * t, 0.4f, 0.0f};
         break;
     case MarchSceneKind::noise_volume:
+    case MarchSceneKind::gradient_noise:
         c.eye = {4.0f * std::sin(0.2f * t), 1.5f, 4.0f * std::cos(0.2f * t)};
         c.lookat = {0.0f, 0.3f, 0.0f};
         break;
@@ -101,6 +104,9 @@ MarchScene::MarchScene(const MarchSceneSettings& settings, int width, int height
     case MarchSceneKind::noise_volume:
         fields_->volume = std::make_unique<procedural::NoiseVolumeField>(procedural::VolumeParams{});
         surface_ = surface_pass(noise_volume_surface(*fields_->volume), rays, settings_);
+        break;
+    case MarchSceneKind::gradient_noise:
+        surface_ = surface_pass(gradient_noise_surface(fields_->gradient_noise), rays, settings_);
         break;
     case MarchSceneKind::metaballs:
         if (settings.balls < 3)

@@ -1,5 +1,6 @@
 // A ready-made ray-marched scene for one frame (seeds/003's labs and homework): the terrain,
-// the 16-sine noise surface, the value-noise volume or animated metaballs, with the
+// the 16-sine noise surface, the value-noise volume, the gradient-noise surface or animated
+// metaballs, with the
 // background and optional fog, as the tile passes the rasterizer runs. The `tessera march`
 // command renders one; the render command can put its passes after the opaque shading of a
 // triangle scene so both share one depth buffer.
@@ -22,9 +23,10 @@
 
 namespace tessera::march {
 
-enum class MarchSceneKind { terrain, sine_noise, noise_volume, metaballs };
+enum class MarchSceneKind { terrain, sine_noise, noise_volume, gradient_noise, metaballs };
 
-// "terrain", "sine-noise", "noise-volume", "metaballs"; throws std::invalid_argument otherwise.
+// "terrain", "sine-noise", "noise-volume", "gradient-noise", "metaballs"; throws
+// std::invalid_argument otherwise.
 MarchSceneKind parse_march_scene(const std::string& name);
 
 struct MarchSceneSettings {
