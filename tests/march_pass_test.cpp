@@ -187,6 +187,9 @@ TEST(MarchPass, BadPassParametersAreRefused) {
     look.normals.h = std::nanf("");
     EXPECT_THROW(Pass(SlabSurface<SphereField>{kSphere, Slab{}}, rays, MarchSettings{}, look, env),
                  std::invalid_argument);
+    EXPECT_THROW(Pass(SlabSurface<SphereField>{kSphere, Slab{1.0f, std::nanf("")}}, rays, MarchSettings{},
+                      SurfaceLook{}, env),
+                 std::invalid_argument);
     Fog fog;
     fog.density = glm::vec3(-1.0f);
     EXPECT_THROW(FogPass(rays, fog), std::invalid_argument);

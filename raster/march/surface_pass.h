@@ -42,6 +42,7 @@ public:
     SurfacePass(Surface surface, const RayGenerator& rays, const MarchSettings& settings,
                 const SurfaceLook& look, const Background& background)
         : surface_(surface), rays_(rays), settings_(settings), look_(look), background_(background) {
+        surface_.validate();
         settings_.validate();
         look_.normals.validate();
     }
