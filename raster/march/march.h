@@ -122,16 +122,29 @@ void march_packet(const F& field, const RayPacket& rays, const PacketSegments& s
         dt = simd::select(active, dt * growth, dt);
     }
 
-    alignas(64) float outside_at[N], inside_at[N];
-    t_prev.store(outside_at);
-    inside_t.store(inside_at);
-    const uint32_t hits = simd::bits(found);
-    for (int i = 0; i < N; ++i) {
-        if (!(hits >> i & 1u)) continue;
-        t_hit[i] = settings.refine ? detail::bisect(field, rays.origin(i), rays.direction(i),
-                                                    outside_at[i], inside_at[i], settings.tolerance)
-                                   : inside_at[i];
+    // Bisection of every hit lane in lockstep, with march_ray's stopping rule per lane (bracket
+    // within tolerance, or no float strictly between its ends), so each lane ends exactly where
+    // the scalar bisect would.
+    vfloat outside = t_prev, inside = inside_t;
+    vmask bisecting = settings.refine ? found : vmask(false);
+    const vfloat tolerance(settings.tolerance);
+    while (true) {
+        const vfloat mid = vfloat(0.5f) * (outside + inside);
+        bisecting = bisecting & (tolerance < inside - outside) & (outside < mid) & (mid < inside);
+        if (!simd::any(bisecting)) break;
+        (ox + dx * mid).store(px);
+        (oy + dy * mid).store(py);
+        (oz + dz * mid).store(pz);
+        evaluate_lanes(field, px, py, pz, v);
+        const vmask in = vfloat(0.0f) <= vfloat::load(v);
+        inside = simd::select(bisecting & in, mid, inside);
+        outside = simd::select(simd::andnot(in, bisecting), mid, outside);
     }
+    alignas(64) float result[N];
+    (settings.refine ? vfloat(0.5f) * (outside + inside) : inside).store(result);
+    const uint32_t hits = simd::bits(found);
+    for (int i = 0; i < N; ++i)
+        if (hits >> i & 1u) t_hit[i] = result[i];
 }
 
 }  // namespace tessera::march
