@@ -1,4 +1,4 @@
-// Ray-marching throughput, one thread: rays per second for each field and step strategy over
+// Ray-marching throughput, one thread (BM_MarchFrame: all cores): rays per second for each field and step strategy over
 // a 256x144 view (the scalar reference next to the packet path), the cost of normals, and
 // the per-pixel cost of fog and background. Compare rates within one run (the machine is
 // shared); items_per_second is rays (or pixels) per second.
@@ -9,10 +9,12 @@
 #include "procedural/field.h"
 #include "raster/march/background_pass.h"
 #include "raster/march/fog_pass.h"
+#include "raster/march/march_scene.h"
 #include "raster/march/metaball_orbits.h"
 #include "raster/march/procedural_surfaces.h"
 #include "raster/march/sphere_field.h"
 #include "raster/march/surface_normal.h"
+#include "raster/rasterizer.h"
 
 using namespace tessera;
 using namespace tessera::march;
@@ -137,6 +139,12 @@ void BM_MarchNoiseVolume(benchmark::State& state) {
 }
 BENCHMARK(BM_MarchNoiseVolume)->Apply(strategies);
 
+void BM_MarchGradientNoise(benchmark::State& state) {
+    const GradientNoiseField noise;
+    run(state, gradient_noise_surface(noise), view({0.0f, 1.5f, 4.0f}, {0.0f, 0.3f, 0.0f}, 40.0f), 40.0f);
+}
+BENCHMARK(BM_MarchGradientNoise)->Apply(strategies);
+
 // Normals at a point: analytic gradient vs the seed's central differences (h = 0.05).
 void BM_TerrainNormal(benchmark::State& state) {
     const procedural::TerrainField terrain(procedural::TerrainParams{});
@@ -173,7 +181,8 @@ BENCHMARK(BM_FogPass)->Arg(0)->Arg(1)->ArgName("height");
 
 void BM_BackgroundSky(benchmark::State& state) {
     const RayGenerator rays(view({0.0f, 1.0f, 4.0f}, {0, 0, 0}), W, H);
-    const Environment sky = Environment::procedural(Sky{});
+    Background sky;
+    sky.kind = Background::Kind::sky;
     const BackgroundPass pass(rays, sky);
     std::vector<float> depth(W * H, 1.0f);
     std::vector<glm::vec4> colour(W * H);
@@ -185,5 +194,38 @@ void BM_BackgroundSky(benchmark::State& state) {
     state.SetItemsProcessed(state.iterations() * W * H);
 }
 BENCHMARK(BM_BackgroundSky);
+
+// A whole frame through the rasterizer's tile stage (tiles in parallel on every core):
+// background, marched surface and fog passes, 960x540. Arguments: {scene, fog?}.
+void BM_MarchFrame(benchmark::State& state) {
+    const march::MarchSceneKind kinds[] = {march::MarchSceneKind::terrain, march::MarchSceneKind::sine_noise,
+                                           march::MarchSceneKind::noise_volume, march::MarchSceneKind::metaballs,
+                                           march::MarchSceneKind::gradient_noise};
+    march::MarchSceneSettings settings;
+    settings.kind = kinds[state.range(0)];
+    settings.march.strategy = StepStrategy::geometric;
+    if (state.range(1)) {
+        settings.fog.density = glm::vec3(0.02f);
+        settings.fog.colour = glm::vec3(0.7f);
+        settings.fog.falloff = 0.3f;
+    }
+    constexpr int FW = 960, FH = 540;
+    const march::MarchScene scene(settings, FW, FH);
+    const std::vector<TilePass> passes = scene.passes();
+    Rasterizer rasterizer;
+    VisibilityBuffer visibility;
+    std::vector<glm::vec4> colour;
+    for (auto _ : state) {
+        rasterizer.render(Mesh{}, scene.camera().view_projection(), Viewport(FW, FH), RasterOptions{}, visibility,
+                          passes, &colour);
+        benchmark::DoNotOptimize(colour.data());
+    }
+    state.SetItemsProcessed(state.iterations() * FW * FH);
+}
+BENCHMARK(BM_MarchFrame)
+    ->ArgNames({"scene", "fog"})
+    ->Args({0, 0})->Args({0, 1})->Args({1, 0})->Args({2, 0})->Args({4, 0})->Args({3, 0})->Args({3, 1})
+    ->UseRealTime()
+    ->Unit(benchmark::kMillisecond);
 
 }  // namespace

@@ -8,6 +8,7 @@
 #include <stdexcept>
 
 #include "procedural/hash.h"
+#include "raster/march/bounds.h"
 #include "raster/march/march.h"
 #include "raster/march/metaball_orbits.h"
 #include "raster/march/ray_generation.h"
@@ -109,6 +110,15 @@ TEST(MarchMetaball, CullingKeepsTheHitsAndDropsFarBalls) {
                 PacketSegments segments;
                 field.cull(packet, 100.0f, subset, segments);
                 EXPECT_LT(subset.size(), balls.size());
+                // Exactly the balls some ray crosses: the packet cone never drops one.
+                size_t crossed = 0;
+                for (const Metaball& b : balls) {
+                    bool any = false;
+                    for (int i = 0; i < packet.count; ++i)
+                        any |= !sphere_interval(packet.origin(i), packet.direction(i), b.centre, b.radius, 100.0f).empty();
+                    crossed += any;
+                }
+                EXPECT_EQ(subset.size(), crossed);
                 float culled[kMarchLanes], full[kMarchLanes];
                 march_packet(subset, packet, segments, settings, culled);
                 march_packet(field, packet, segments, settings, full);

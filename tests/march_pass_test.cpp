@@ -43,6 +43,12 @@ Camera test_camera() {
 
 const SphereField kSphere{{0.0f, 0.0f, 0.0f}, 1.0f};
 
+Background sky_background() {
+    Background b;
+    b.kind = Background::Kind::sky;
+    return b;
+}
+
 double sphere_distance(glm::vec3 o, glm::vec3 d) {
     const glm::dvec3 oc = glm::dvec3(o - kSphere.centre);
     const double b = glm::dot(glm::dvec3(d), oc);
@@ -50,7 +56,7 @@ double sphere_distance(glm::vec3 o, glm::vec3 d) {
     return disc < 0.0 ? INFINITY : -b - std::sqrt(disc);
 }
 
-SurfacePass<SlabSurface<SphereField>> sphere_pass(const RayGenerator& rays, const Environment& env) {
+SurfacePass<SlabSurface<SphereField>> sphere_pass(const RayGenerator& rays, const Background& env) {
     MarchSettings settings;
     settings.tolerance = 1e-5f;
     return {SlabSurface<SphereField>{kSphere, Slab{-1.0f, 1.0f}}, rays, settings, SurfaceLook{}, env};
@@ -61,7 +67,7 @@ SurfacePass<SlabSurface<SphereField>> sphere_pass(const RayGenerator& rays, cons
 TEST(MarchPass, MarchedSphereLandsAtItsAnalyticDepth) {
     const Camera camera = test_camera();
     const RayGenerator rays(camera, W, H);
-    const Environment env = Environment::procedural(Sky{});
+    const Background env = sky_background();
     Frame frame;
     sphere_pass(rays, env).run(frame.all());
     int covered = 0;
@@ -89,7 +95,7 @@ TEST(MarchPass, MarchedSurfaceAndRasterizedPlaneOccludeEachOther) {
     // the sphere's cap (z up to 1) pokes through it, its flanks (z < 0.6) hide behind it.
     const Camera camera = test_camera();
     const RayGenerator rays(camera, W, H);
-    const Environment env = Environment::procedural(Sky{});
+    const Background env = sky_background();
     Frame frame;
     const glm::vec4 green(0.0f, 1.0f, 0.0f, 1.0f);
     for (int y = 0; y < H; ++y)
@@ -117,7 +123,7 @@ TEST(MarchPass, MarchedSurfaceAndRasterizedPlaneOccludeEachOther) {
 
 TEST(MarchPass, TilesGiveTheSameBytesAsOneRectangle) {
     const RayGenerator rays(test_camera(), W, H);
-    const Environment env = Environment::procedural(Sky{});
+    const Background env = sky_background();
     Fog fog;
     fog.density = {0.05f, 0.07f, 0.09f};
     fog.colour = {0.6f, 0.6f, 0.7f};
@@ -144,7 +150,7 @@ TEST(MarchPass, TilesGiveTheSameBytesAsOneRectangle) {
 TEST(MarchPass, BackgroundFillsEmptyPixelsAndFogUsesTheDepthDistance) {
     const Camera camera = test_camera();
     const RayGenerator rays(camera, W, H);
-    const Environment env = Environment::procedural(Sky{});
+    const Background env = sky_background();
     Frame frame;
     sphere_pass(rays, env).run(frame.all());
     const Frame shaded = frame;
@@ -158,7 +164,7 @@ TEST(MarchPass, BackgroundFillsEmptyPixelsAndFogUsesTheDepthDistance) {
         for (int x = 0; x < W; ++x) {
             const glm::vec3 d = rays.direction(x, y);
             const float depth = frame.depth[y * W + x];
-            const glm::vec3 before = depth < 1.0f ? glm::vec3(shaded.colour[y * W + x]) : env.radiance(d);
+            const glm::vec3 before = depth < 1.0f ? glm::vec3(shaded.colour[y * W + x]) : background_radiance(env, d);
             const float distance = depth < 1.0f ? float(sphere_distance(camera.eye, d)) : INFINITY;
             if (depth < 1.0f && std::isinf(distance)) continue;
             const glm::vec3 expected = fog.apply(before, camera.eye, d, distance);
@@ -170,7 +176,7 @@ TEST(MarchPass, BackgroundFillsEmptyPixelsAndFogUsesTheDepthDistance) {
 
 TEST(MarchPass, BadPassParametersAreRefused) {
     const RayGenerator rays(test_camera(), W, H);
-    const Environment env = Environment::procedural(Sky{});
+    const Background env = sky_background();
     MarchSettings zero_steps;
     zero_steps.steps = 0;
     using Pass = SurfacePass<SlabSurface<SphereField>>;
@@ -180,6 +186,9 @@ TEST(MarchPass, BadPassParametersAreRefused) {
     look.normals.method = NormalMethod::central_differences;
     look.normals.h = std::nanf("");
     EXPECT_THROW(Pass(SlabSurface<SphereField>{kSphere, Slab{}}, rays, MarchSettings{}, look, env),
+                 std::invalid_argument);
+    EXPECT_THROW(Pass(SlabSurface<SphereField>{kSphere, Slab{1.0f, std::nanf("")}}, rays, MarchSettings{},
+                      SurfaceLook{}, env),
                  std::invalid_argument);
     Fog fog;
     fog.density = glm::vec3(-1.0f);

@@ -13,11 +13,13 @@
 #include <glm/glm.hpp>
 
 #include <algorithm>
+#include <cstdint>
 #include <limits>
 
 #include "raster/march/implicit_field.h"
 #include "raster/march/march_settings.h"
 #include "raster/march/ray_packet.h"
+#include "raster/simd/simd.h"
 
 namespace tessera::march {
 
@@ -69,75 +71,80 @@ struct PacketSegments {
 };
 
 // Marches every live lane of `rays`; t_hit[i] receives what march_ray would return for lane i.
+// The per-lane state is one simd::vfloat per quantity and the lane bookkeeping is masks; only
+// the field is called through arrays (evaluate_lanes), since fields choose their own SIMD.
 template <ImplicitField F>
 void march_packet(const F& field, const RayPacket& rays, const PacketSegments& segments,
                   const MarchSettings& settings, float* t_hit) {
+    using simd::vfloat;
+    using simd::vmask;
     constexpr int N = kMarchLanes;
-    alignas(64) float t_prev[N], dt[N], growth[N], t[N], px[N], py[N], pz[N], v[N];
-    alignas(64) int active[N];  // -1 (all bits) while the lane still marches, else 0
-    int live = 0;
+    alignas(64) float first_step[N], growth_of[N], px[N], py[N], pz[N], v[N];
     for (int i = 0; i < N; ++i) {
         t_hit[i] = kMiss;
         const Interval segment{segments.t0[i], segments.t1[i]};
-        active[i] = (i < rays.count && !segment.empty()) ? -1 : 0;
         const MarchSettings::Schedule s =
-            active[i] ? settings.schedule(segment) : MarchSettings::Schedule{0.0f, 1.0f};
-        t_prev[i] = active[i] ? segment.t0 : 0.0f;
-        dt[i] = s.first_step;
-        growth[i] = s.growth;
-        live -= active[i];
+            segment.empty() ? MarchSettings::Schedule{0.0f, 1.0f} : settings.schedule(segment);
+        first_step[i] = s.first_step;
+        growth_of[i] = s.growth;
     }
-    if (live == 0) return;
+    const vfloat t0 = vfloat::load(segments.t0), t1 = vfloat::load(segments.t1);
+    const vfloat ox = vfloat::load(rays.ox), oy = vfloat::load(rays.oy), oz = vfloat::load(rays.oz);
+    const vfloat dx = vfloat::load(rays.dx), dy = vfloat::load(rays.dy), dz = vfloat::load(rays.dz);
+    const vfloat growth = vfloat::load(growth_of);
+    vmask active = (simd::lane_index() < simd::vint(rays.count)) & (t0 <= t1);
+    if (!simd::any(active)) return;
 
     // Sample at t0 first: a lane that starts inside the solid hits there.
-    for (int i = 0; i < N; ++i) {
-        px[i] = rays.ox[i] + rays.dx[i] * t_prev[i];
-        py[i] = rays.oy[i] + rays.dy[i] * t_prev[i];
-        pz[i] = rays.oz[i] + rays.dz[i] * t_prev[i];
-    }
+    (ox + dx * t0).store(px);
+    (oy + dy * t0).store(py);
+    (oz + dz * t0).store(pz);
     evaluate_lanes(field, px, py, pz, v);
-    alignas(64) float inside_t[N];  // the first inside sample, for refinement
-    alignas(64) int found[N];
-    for (int i = 0; i < N; ++i) {
-        found[i] = 0;
-        inside_t[i] = 0.0f;
-        if (active[i] && v[i] >= 0.0f) {
-            t_hit[i] = t_prev[i];
-            active[i] = 0;
-            --live;
-        }
-    }
+    const vmask starts_inside = active & (vfloat(0.0f) <= vfloat::load(v));
+    for (int i = 0; i < N; ++i)
+        if (simd::bits(starts_inside) >> i & 1u) t_hit[i] = segments.t0[i];
+    active = simd::andnot(starts_inside, active);
 
-    for (int k = 0; k < settings.steps && live > 0; ++k) {
-        for (int i = 0; i < N; ++i) {
-            t[i] = std::min(t_prev[i] + dt[i], segments.t1[i]);
-            px[i] = rays.ox[i] + rays.dx[i] * t[i];
-            py[i] = rays.oy[i] + rays.dy[i] * t[i];
-            pz[i] = rays.oz[i] + rays.dz[i] * t[i];
-        }
+    vfloat t_prev = t0, dt = vfloat::load(first_step), inside_t(0.0f);
+    vmask found(false);
+    for (int k = 0; k < settings.steps && simd::any(active); ++k) {
+        const vfloat t = simd::min(t_prev + dt, t1);
+        (ox + dx * t).store(px);
+        (oy + dy * t).store(py);
+        (oz + dz * t).store(pz);
         evaluate_lanes(field, px, py, pz, v);
-        // Branch-free lane update on all-ones / zero int masks (no && or ifs, which GCC
-        // cannot if-convert), so it vectorises like the rest.
-        live = 0;
-        for (int i = 0; i < N; ++i) {
-            const int inside = active[i] & -int(v[i] >= 0.0f);
-            const int left = active[i] & -int(t[i] >= segments.t1[i]);  // a miss
-            const int still = active[i] & ~inside & ~left;
-            found[i] |= inside;
-            inside_t[i] = inside ? t[i] : inside_t[i];
-            active[i] = still;
-            t_prev[i] = still ? t[i] : t_prev[i];
-            dt[i] = still ? dt[i] * growth[i] : dt[i];
-            live -= still;
-        }
+        const vmask inside = active & (vfloat(0.0f) <= vfloat::load(v));
+        const vmask left = active & (t1 <= t);  // reached the end of the bounds: a miss
+        found = found | inside;
+        inside_t = simd::select(inside, t, inside_t);
+        active = simd::andnot(inside | left, active);
+        t_prev = simd::select(active, t, t_prev);
+        dt = simd::select(active, dt * growth, dt);
     }
 
-    for (int i = 0; i < N; ++i) {
-        if (!found[i]) continue;
-        t_hit[i] = settings.refine ? detail::bisect(field, rays.origin(i), rays.direction(i),
-                                                    t_prev[i], inside_t[i], settings.tolerance)
-                                   : inside_t[i];
+    // Bisection of every hit lane in lockstep, with march_ray's stopping rule per lane (bracket
+    // within tolerance, or no float strictly between its ends), so each lane ends exactly where
+    // the scalar bisect would.
+    vfloat outside = t_prev, inside = inside_t;
+    vmask bisecting = settings.refine ? found : vmask(false);
+    const vfloat tolerance(settings.tolerance);
+    while (true) {
+        const vfloat mid = vfloat(0.5f) * (outside + inside);
+        bisecting = bisecting & (tolerance < inside - outside) & (outside < mid) & (mid < inside);
+        if (!simd::any(bisecting)) break;
+        (ox + dx * mid).store(px);
+        (oy + dy * mid).store(py);
+        (oz + dz * mid).store(pz);
+        evaluate_lanes(field, px, py, pz, v);
+        const vmask in = vfloat(0.0f) <= vfloat::load(v);
+        inside = simd::select(bisecting & in, mid, inside);
+        outside = simd::select(simd::andnot(in, bisecting), mid, outside);
     }
+    alignas(64) float result[N];
+    (settings.refine ? vfloat(0.5f) * (outside + inside) : inside).store(result);
+    const uint32_t hits = simd::bits(found);
+    for (int i = 0; i < N; ++i)
+        if (hits >> i & 1u) t_hit[i] = result[i];
 }
 
 }  // namespace tessera::march

@@ -1,6 +1,7 @@
 // A marchable surface = a field plus how it bounds a packet of rays. bind() fills each lane's
 // [t0, t1] and returns the field to march for that packet (possibly a culled copy kept in the
-// caller's scratch, so nothing is shared between threads):
+// caller's scratch, so nothing is shared between threads); validate() throws
+// std::invalid_argument for bounds that cannot hold a surface:
 // - SlabSurface: a field that lies between two horizontal planes (the seed's terrain and its
 //   3-D noise);
 // - MetaballSurface: metaballs, culled per packet to the balls the packet's rays cross.
@@ -18,7 +19,8 @@ struct SlabSurface {
     Slab slab;
 
     struct Scratch {};
-    using Bound = F;
+
+    void validate() const { slab.validate(); }
 
     const F& bind(const RayPacket& rays, float t_far, PacketSegments& segments, Scratch&) const {
         for (int i = 0; i < kMarchLanes; ++i) {
@@ -34,7 +36,8 @@ struct MetaballSurface {
     const MetaballField& field;
 
     using Scratch = MetaballField;
-    using Bound = MetaballField;
+
+    void validate() const {}  // the field validated its balls when it was built
 
     const MetaballField& bind(const RayPacket& rays, float t_far, PacketSegments& segments,
                               Scratch& subset) const {

@@ -119,7 +119,7 @@ namespace {
 struct PacketCone {
     bool valid = false;
     glm::vec3 apex{0.0f}, axis{0.0f};
-    float half_angle = 0.0f;
+    float cos_half = 1.0f, sin_half = 0.0f;  // of the half opening angle
 };
 
 PacketCone packet_cone(const RayPacket& rays) {
@@ -135,20 +135,31 @@ PacketCone packet_cone(const RayPacket& rays) {
     float cos_half = 1.0f;
     for (int i = 0; i < rays.count; ++i) cos_half = std::min(cos_half, glm::dot(rays.direction(i), cone.axis));
     cone.apex = rays.origin(0);
-    cone.half_angle = std::acos(std::clamp(cos_half, -1.0f, 1.0f));
+    // Widened by 1e-3 rad so rounding never rejects a ball a ray touches; a false "maybe"
+    // only costs the per-ray tests that follow.
+    const float half = std::acos(std::clamp(cos_half, -1.0f, 1.0f)) + 1e-3f;
+    if (half >= 1.5f) return cone;  // a very wide packet: the trigonometry below would not hold
+    cone.cos_half = std::cos(half);
+    cone.sin_half = std::sin(half);
     cone.valid = true;
     return cone;
 }
 
-// True unless the sphere lies entirely outside the cone (conservative: a margin of 1e-3 rad
-// absorbs rounding, and a false "maybe" only costs the per-ray tests that follow).
+// True unless the sphere lies entirely outside the cone: the angle between the axis and the
+// centre must not exceed the half angle plus the sphere's angular radius b (sin b = R/dist),
+// compared through cosines, cos(half + b) = cos half cos b - sin half sin b, with no
+// inverse trigonometry per ball.
 bool cone_may_touch(const PacketCone& cone, glm::vec3 centre, float radius) {
     if (!cone.valid) return true;
     const glm::vec3 v = centre - cone.apex;
     const float dist = glm::length(v);
     if (dist <= radius) return true;
-    const float angle = std::acos(std::clamp(glm::dot(v, cone.axis) / dist, -1.0f, 1.0f));
-    return angle <= cone.half_angle + std::asin(radius / dist) + 1e-3f;
+    const float sin_b = radius / dist;
+    const float cos_b = std::sqrt(1.0f - sin_b * sin_b);
+    const float cos_limit = cone.cos_half * cos_b - cone.sin_half * sin_b;
+    // half + b >= pi/2 happens only for a huge sphere close by: accept it.
+    if (cos_limit <= 0.0f) return true;
+    return glm::dot(v, cone.axis) >= cos_limit * dist;
 }
 
 }  // namespace

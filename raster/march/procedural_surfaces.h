@@ -4,9 +4,11 @@
 //   amplitude on top);
 // - the seed's 16-sine noise f = w/32 + 0.5 - p.y with |w| <= 16: the surface lies in
 //   [0, 1] (a hair more for the approximated sines);
-// - the value-noise volume f = base + amplitude * fbm - p.y with |fbm| <= 1.
+// - the value-noise volume f = base + amplitude * fbm - p.y with |fbm| <= 1;
+// - the gradient-noise surface f = base + amplitude * n - p.y, |n| "about 1": 10 % margin.
 #pragma once
 #include "procedural/field.h"
+#include "raster/march/gradient_noise_field.h"
 #include "raster/march/march_surface.h"
 
 namespace tessera::march {
@@ -24,6 +26,10 @@ inline SlabSurface<procedural::SineNoiseField> sine_noise_surface(const procedur
 inline SlabSurface<procedural::NoiseVolumeField> noise_volume_surface(const procedural::NoiseVolumeField& field) {
     const procedural::VolumeParams& p = field.params();
     return {field, Slab{p.base - p.amplitude, p.base + p.amplitude}};
+}
+
+inline SlabSurface<GradientNoiseField> gradient_noise_surface(const GradientNoiseField& field) {
+    return {field, Slab{field.base - 1.1f * field.amplitude, field.base + 1.1f * field.amplitude}};
 }
 
 }  // namespace tessera::march

@@ -1,16 +1,14 @@
-// A packet of primary rays in structure-of-arrays form: one lane per pixel of a horizontal run,
-// so every per-lane loop over `kMarchLanes` floats is a straight-line loop the compiler turns
-// into one vector instruction per operation (16 lanes with AVX-512, 8 with AVX2).
+// A packet of primary rays in structure-of-arrays form: one lane per pixel of a horizontal run
+// of kMarchLanes pixels, the SIMD width of raster/simd (16 with AVX-512, 8 with AVX2, 1 in the
+// scalar build), so a packet's lanes are one simd::vfloat.
 #pragma once
 #include <glm/glm.hpp>
 
+#include "raster/simd/simd.h"
+
 namespace tessera::march {
 
-#if defined(__AVX512F__)
-inline constexpr int kMarchLanes = 16;
-#else
-inline constexpr int kMarchLanes = 8;
-#endif
+inline constexpr int kMarchLanes = simd::kLanes;
 
 // Lanes beyond `count` are padding: they carry a valid ray (a copy of lane 0) so arithmetic on
 // them is harmless, and every consumer ignores them.

@@ -14,32 +14,35 @@
 #pragma once
 #include <algorithm>
 #include <stdexcept>
+#include <vector>
 
-#include "raster/march/environment.h"
 #include "raster/march/march.h"
 #include "raster/march/march_settings.h"
 #include "raster/march/pass_target.h"
 #include "raster/march/ray_generation.h"
 #include "raster/march/surface_normal.h"
 #include "raster/march/surface_shading.h"
+#include "raster/shade/background.h"
 #include "raster/visibility.h"
 
 namespace tessera::march {
 
 struct SurfaceLook {
     SurfaceMaterial material{};
-    DirectionalLight light{};
+    // A sun above and behind the viewer's right shoulder for views towards -z.
+    std::vector<Light> lights{directional_light({0.5f, 0.8f, 0.6f}, glm::vec3(0.12f), glm::vec3(1.0f))};
     NormalSettings normals{};
 };
 
 template <class Surface>
 class SurfacePass {
 public:
-    // Validates the settings (std::invalid_argument). The generator and environment are
+    // Validates the settings (std::invalid_argument). The generator and background are
     // borrowed and must outlive the pass.
     SurfacePass(Surface surface, const RayGenerator& rays, const MarchSettings& settings,
-                const SurfaceLook& look, const Environment& environment)
-        : surface_(surface), rays_(rays), settings_(settings), look_(look), environment_(environment) {
+                const SurfaceLook& look, const Background& background)
+        : surface_(surface), rays_(rays), settings_(settings), look_(look), background_(background) {
+        surface_.validate();
         settings_.validate();
         look_.normals.validate();
     }
@@ -79,7 +82,7 @@ private:
                 target.triangle[size_t(y - target.y0) * target.depth_stride + size_t(x0 + i - target.x0)] =
                     kNoTriangle;
             const glm::vec3 n = surface_normal(field, p, look_.normals);
-            const glm::vec3 c = shade_surface(look_.material, look_.light, environment_,
+            const glm::vec3 c = shade_surface(look_.material, look_.lights, background_, p,
                                               packet.direction(i), n);
             target.colour_at(x0 + i, y) = glm::vec4(c, 1.0f);
         }
@@ -89,7 +92,7 @@ private:
     const RayGenerator& rays_;
     MarchSettings settings_;
     SurfaceLook look_;
-    const Environment& environment_;
+    const Background& background_;
 };
 
 }  // namespace tessera::march
