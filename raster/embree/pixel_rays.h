@@ -5,8 +5,9 @@
 // and keeps what lies between the near and far planes (-w <= z <= w). The ray for a pixel
 // therefore starts on the near plane and ends on the far plane: origin = unproject(ndc, -1),
 // direction = unproject(ndc, +1) - origin, so t in [0, 1] spans exactly the clip volume.
-// Unprojection runs in double: the inverse of a perspective matrix with near/far = 1e-3
-// loses most float digits, and the ray's cost dwarfs the arithmetic.
+// The inverse matrix is formed in double (with near/far = 1e-3 a float inverse loses most
+// digits); the unprojected points are affine in the window position, so a ray then costs two
+// float 4-vector evaluations and two divisions.
 #pragma once
 #include <glm/glm.hpp>
 
@@ -29,8 +30,14 @@ public:
     int height() const { return height_; }
 
 private:
+    // A homogeneous point affine in the window position: origin + x * per_x + y * per_y.
+    struct Affine {
+        glm::vec4 origin, per_x, per_y;
+        glm::vec4 at(float x, float y) const { return origin + x * per_x + y * per_y; }
+    };
+
     glm::dmat4 view_projection_;
-    glm::dmat4 inverse_;
+    Affine near_, far_;  // unprojections onto the near (z_ndc = -1) and far (+1) planes
     int width_;
     int height_;
 };
