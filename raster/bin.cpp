@@ -31,12 +31,11 @@ void ChunkBins::bin(const TileGrid& grid, std::vector<uint32_t>& count) {
     for (int t = 0; t < tiles; ++t) offsets[t + 1] = offsets[t] + count[t + 1];
     entries.resize(offsets[tiles]);
     for (int t = 0; t < tiles; ++t) count[t] = offsets[t];
-    for (uint32_t i = 0; i < setups.size(); ++i) {
-        const TriangleSetup& s = setups[i];
+    for (const TriangleSetup& s : setups) {
         const int tx0 = s.minx >> grid.shift, tx1 = s.maxx >> grid.shift;
         const int ty0 = s.miny >> grid.shift, ty1 = s.maxy >> grid.shift;
         for (int ty = ty0; ty <= ty1; ++ty)
-            for (int tx = tx0; tx <= tx1; ++tx) entries[count[size_t(ty) * grid.tiles_x + tx]++] = i;
+            for (int tx = tx0; tx <= tx1; ++tx) entries[count[size_t(ty) * grid.tiles_x + tx]++] = s;
     }
 }
 

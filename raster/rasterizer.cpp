@@ -52,8 +52,8 @@ void TileContext::for_each_transparent(
     const size_t capacity = size_t(width()) * size_t(height()) + simd::kLanes;
     if (fragments.size() < capacity) fragments.resize(capacity);
     for (const ChunkBins& chunk : *work->chunks) {
-        for (const uint32_t* e = chunk.begin(work->tile); e != chunk.end(work->tile); ++e) {
-            const TriangleSetup& t = chunk.setups[*e];
+        for (const TriangleSetup* e = chunk.begin(work->tile); e != chunk.end(work->tile); ++e) {
+            const TriangleSetup& t = *e;
             if (!t.transparent) continue;
             const size_t n = rasterize_tested(t, rect, depth, stride, fragments.data());
             if (n) blend(t.triangle, std::span<const Fragment>(fragments.data(), n));
@@ -123,8 +123,8 @@ void Rasterizer::render(const Mesh& mesh, const glm::mat4& view_projection, cons
             TileBuffers& buffers = scratch.buffers;
             buffers.clear(grid.size);
             for (const ChunkBins& chunk : s.chunks)
-                for (const uint32_t* e = chunk.begin(tile); e != chunk.end(tile); ++e) {
-                    const TriangleSetup& t = chunk.setups[*e];
+                for (const TriangleSetup* e = chunk.begin(tile); e != chunk.end(tile); ++e) {
+                    const TriangleSetup& t = *e;
                     if (!t.transparent) rasterize_opaque(t, rect, buffers);
                 }
 

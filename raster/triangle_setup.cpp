@@ -20,8 +20,8 @@ DepthPlane DepthPlane::from(const WindowVertex& v0, const WindowVertex& v1, cons
     const double z1 = double(v1.z) - double(v0.z), z2 = double(v2.z) - double(v0.z);
     const double det = x1 * y2 - x2 * y1;
     DepthPlane p;
-    p.ax = v0.X >> kSubpixelBits;  // the pixel that holds vertex 0 (floor)
-    p.ay = v0.Y >> kSubpixelBits;
+    p.ax = int16_t(v0.X >> kSubpixelBits);  // the pixel that holds vertex 0 (floor)
+    p.ay = int16_t(v0.Y >> kSubpixelBits);
     if (det == 0.0) {  // never traversed (zero area), but keep the plane finite
         p.c = v0.z;
         return p;
