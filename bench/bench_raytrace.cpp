@@ -21,7 +21,9 @@
 #include "raster/embree/ray_cast.h"
 #include "raster/embree/scene.h"
 #include "raster/embree/shadow_rays.h"
+#include "raster/rasterizer.h"
 #include "raster/shadow/light_mask.h"
+#include "raster/shadow/shadow_map.h"
 #include "raster/sphere_grid.h"
 
 namespace {
@@ -52,15 +54,16 @@ glm::mat4 view_projection(const Fixture& f, int64_t height) {
     return camera.view_projection();
 }
 
-// The visibility buffer of a configuration (ray-cast; identical to the rasterizer's except
-// exact-edge ties), cached: the shadow benchmarks start from it.
+// The rasterizer's visibility buffer of a configuration, cached: the shadow benchmarks
+// start from it.
 const VisibilityBuffer& visibility(int64_t triangles, int64_t height) {
     static std::map<std::pair<int64_t, int64_t>, VisibilityBuffer> cache;
     auto [it, fresh] = cache.try_emplace({triangles, height});
     if (fresh) {
         const Fixture& f = fixture(triangles);
-        rt::cast_primary_rays(*f.scene, view_projection(f, height), width_for(height), int(height),
-                              it->second);
+        Rasterizer rasterizer;
+        rasterizer.render(f.grid.mesh, view_projection(f, height),
+                          Viewport(width_for(height), int(height)), RasterOptions{}, it->second);
     }
     return it->second;
 }
@@ -85,6 +88,21 @@ void set_rays(benchmark::State& state, double rays_per_iteration) {
 }
 
 // --- Primary visibility ----------------------------------------------------------------------
+
+void BM_RasterVisibility(benchmark::State& state) {
+    const int64_t tris = state.range(0), height = state.range(1);
+    Fixture& f = fixture(tris);
+    const glm::mat4 vp = view_projection(f, height);
+    const auto cap = cap_threads(state.range(3));
+    Rasterizer rasterizer;
+    VisibilityBuffer vis;
+    for (auto _ : state) {
+        rasterizer.render(f.grid.mesh, vp, Viewport(width_for(height), int(height)),
+                          RasterOptions{}, vis);
+        benchmark::DoNotOptimize(vis.triangle.data());
+    }
+    state.counters["triangles"] = double(f.grid.mesh.triangle_count());
+}
 
 void primary(benchmark::State& state, rt::RayPacket packet) {
     const int64_t tris = state.range(0), height = state.range(1);
@@ -121,6 +139,42 @@ void BM_SurfaceGather(benchmark::State& state) {
     }
 }
 
+constexpr int kShadowMapSize = 2048;
+
+// Shadow maps: one 2048^2 depth render per light by the rasterizer, then the PCF lookups.
+void BM_ShadowMaps(benchmark::State& state) {
+    const int64_t tris = state.range(0), height = state.range(1);
+    Fixture& f = fixture(tris);
+    const VisibilityBuffer& vis = visibility(tris, height);
+    const glm::mat4 vp = view_projection(f, height);
+    const std::vector<glm::vec3> light_list = lights(f, state.range(2));
+    const auto cap = cap_threads(state.range(3));
+    Rasterizer rasterizer;
+    shadow::ShadowMapOptions options;
+    options.resolution = kShadowMapSize;
+    for (auto _ : state) {
+        std::vector<shadow::ShadowMap> maps;
+        for (const glm::vec3& light : light_list)
+            maps.emplace_back(rasterizer, f.grid.mesh, light, options);
+        const auto mask = shadow::compute_light_mask(vis, f.grid.mesh, vp, light_list,
+                                                     shadow::shadow_map_test(maps));
+        benchmark::DoNotOptimize(mask.bits.data());
+    }
+}
+
+// The depth render alone, at map resolution range(1) x range(1).
+void BM_ShadowMapRender(benchmark::State& state) {
+    Fixture& f = fixture(state.range(0));
+    const auto cap = cap_threads(state.range(3));
+    Rasterizer rasterizer;
+    shadow::ShadowMapOptions options;
+    options.resolution = int(state.range(1));
+    for (auto _ : state) {
+        const shadow::ShadowMap map(rasterizer, f.grid.mesh, f.grid.light, options);
+        benchmark::DoNotOptimize(map.depth().depth.data());
+    }
+}
+
 void shadow_rays(benchmark::State& state, rt::RayPacket packet) {
     const int64_t tris = state.range(0), height = state.range(1);
     Fixture& f = fixture(tris);
@@ -143,6 +197,35 @@ void BM_EmbreeShadowRays8(benchmark::State& state) { shadow_rays(state, rt::RayP
 void BM_EmbreeShadowRaysSingle(benchmark::State& state) {
     shadow_rays(state, rt::RayPacket::single);
 }
+
+// A rasterized frame with shadows: visibility by the rasterizer, then shadow maps (2048^2)
+// or Embree shadow rays (BVH prebuilt) to every light.
+void raster_frame(benchmark::State& state, bool rays) {
+    const int64_t tris = state.range(0), height = state.range(1);
+    Fixture& f = fixture(tris);
+    const glm::mat4 vp = view_projection(f, height);
+    const std::vector<glm::vec3> light_list = lights(f, state.range(2));
+    const auto cap = cap_threads(state.range(3));
+    Rasterizer rasterizer;
+    VisibilityBuffer vis;
+    shadow::ShadowMapOptions options;
+    options.resolution = kShadowMapSize;
+    const shadow::LightTest ray_test = rt::shadow_ray_test(*f.scene);
+    for (auto _ : state) {
+        rasterizer.render(f.grid.mesh, vp, Viewport(width_for(height), int(height)),
+                          RasterOptions{}, vis);
+        std::vector<shadow::ShadowMap> maps;
+        if (!rays)
+            for (const glm::vec3& light : light_list)
+                maps.emplace_back(rasterizer, f.grid.mesh, light, options);
+        const auto mask = shadow::compute_light_mask(
+            vis, f.grid.mesh, vp, light_list, rays ? ray_test : shadow::shadow_map_test(maps));
+        benchmark::DoNotOptimize(mask.bits.data());
+    }
+}
+
+void BM_RasterFrameShadowMaps(benchmark::State& state) { raster_frame(state, false); }
+void BM_RasterFrameShadowRays(benchmark::State& state) { raster_frame(state, true); }
 
 // The whole ray-cast frame: primary rays, then shadow rays to every light.
 void BM_EmbreeFrame(benchmark::State& state) {
@@ -273,6 +356,11 @@ void packet_sweep(benchmark::internal::Benchmark* b) {
     for (int64_t tris : {16000, 100000, 1000000}) b->Args({tris, 1080, 1, 1});
 }
 
+// Shadow-map depth render at 1024^2 .. 4096^2, 100k triangles, 2 threads.
+void map_sweep(benchmark::internal::Benchmark* b) {
+    for (int64_t size : {1024, 2048, 4096}) b->Args({100000, size, 1, 2});
+}
+
 void bvh_sweep(benchmark::internal::Benchmark* b) {
     for (int64_t threads : {1, 2})
         for (int64_t tris : kTriangleCounts) b->Args({tris, 0, 0, threads});
@@ -281,16 +369,25 @@ void bvh_sweep(benchmark::internal::Benchmark* b) {
 #define TESSERA_SWEEP(bench, sweep) \
     BENCHMARK(bench)->Apply(sweep)->UseRealTime()->Unit(benchmark::kMillisecond)
 
+TESSERA_SWEEP(BM_RasterVisibility, triangle_sweep);
+TESSERA_SWEEP(BM_RasterVisibility, resolution_sweep);
 TESSERA_SWEEP(BM_EmbreePrimary, triangle_sweep);
 TESSERA_SWEEP(BM_EmbreePrimary, resolution_sweep);
 TESSERA_SWEEP(BM_EmbreePrimary8, packet_sweep);
 TESSERA_SWEEP(BM_EmbreePrimarySingle, packet_sweep);
 TESSERA_SWEEP(BM_SurfaceGather, triangle_sweep);
+TESSERA_SWEEP(BM_ShadowMaps, triangle_sweep);
+TESSERA_SWEEP(BM_ShadowMaps, light_sweep);
+TESSERA_SWEEP(BM_ShadowMapRender, map_sweep);
 TESSERA_SWEEP(BM_EmbreeShadowRays, triangle_sweep);
 TESSERA_SWEEP(BM_EmbreeShadowRays, light_sweep);
 TESSERA_SWEEP(BM_EmbreeShadowRays, resolution_sweep);
 TESSERA_SWEEP(BM_EmbreeShadowRays8, packet_sweep);
 TESSERA_SWEEP(BM_EmbreeShadowRaysSingle, packet_sweep);
+TESSERA_SWEEP(BM_RasterFrameShadowMaps, triangle_sweep);
+TESSERA_SWEEP(BM_RasterFrameShadowMaps, light_sweep);
+TESSERA_SWEEP(BM_RasterFrameShadowRays, triangle_sweep);
+TESSERA_SWEEP(BM_RasterFrameShadowRays, light_sweep);
 TESSERA_SWEEP(BM_EmbreeFrame, triangle_sweep);
 TESSERA_SWEEP(BM_EmbreeFrame, light_sweep);
 TESSERA_SWEEP(BM_BvhBuildMedium, bvh_sweep);

@@ -3,7 +3,7 @@
 #include <algorithm>
 #include <cmath>
 
-#include <glm/gtc/constants.hpp>
+#include "raster/test_meshes.h"
 
 namespace tessera {
 namespace {
@@ -11,32 +11,18 @@ namespace {
 constexpr float kRadius = 0.4f;
 constexpr size_t kGroundVertices = 4;  // make_sphere_grid's ground is one quad
 
-glm::vec3 sphere_direction(float u, float v) {
-    const float phi = 2.0f * glm::pi<float>() * u, theta = glm::pi<float>() * v;
-    // The seed's n with z and y swapped, so the poles point along the y axis (up).
-    return {std::cos(phi) * std::sin(theta), std::cos(theta), std::sin(phi) * std::sin(theta)};
+// Appends `part` scaled by `scale` and moved to `centre`.
+void append_placed(Mesh& mesh, const Mesh& part, const glm::vec3& centre, float scale) {
+    const auto first = uint32_t(mesh.positions.size());
+    for (size_t v = 0; v < part.vertex_count(); ++v) {
+        mesh.positions.push_back(centre + scale * part.positions[v]);
+        mesh.normals.push_back(part.normals[v]);
+        mesh.uvs.push_back(part.uvs[v]);
+    }
+    for (uint32_t index : part.indices) mesh.indices.push_back(first + index);
 }
 
 }  // namespace
-
-void append_uv_sphere(Mesh& mesh, const glm::vec3& centre, float radius, int slices, int stacks) {
-    const auto first = uint32_t(mesh.positions.size());
-    for (int j = 0; j <= stacks; ++j)
-        for (int i = 0; i <= slices; ++i) {
-            const glm::vec3 n = sphere_direction(float(i) / slices, float(j) / stacks);
-            mesh.positions.push_back(centre + radius * n);
-            mesh.normals.push_back(n);
-            mesh.uvs.push_back({float(i) / slices, float(j) / stacks});
-        }
-    const auto at = [&](int i, int j) { return first + uint32_t(j * (slices + 1) + i); };
-    for (int j = 0; j < stacks; ++j)
-        for (int i = 0; i < slices; ++i) {
-            // Counter-clockwise seen from outside (v grows downwards from the +y pole).
-            const uint32_t a = at(i, j), b = at(i + 1, j), c = at(i + 1, j + 1), d = at(i, j + 1);
-            if (j != 0) mesh.indices.insert(mesh.indices.end(), {a, b, d});
-            if (j != stacks - 1) mesh.indices.insert(mesh.indices.end(), {b, c, d});
-        }
-}
 
 void append_ground(Mesh& mesh, float x, float z, float height, float size, int cells) {
     const auto first = uint32_t(mesh.positions.size());
@@ -69,10 +55,10 @@ SphereGridScene make_sphere_grid(size_t triangles, float aspect) {
     const size_t sphere_vertices = size_t(scene.sphere_slices + 1) * (scene.sphere_stacks + 1);
     mesh.positions.reserve(kGroundVertices + spheres * sphere_vertices + 1);  // +1: Embree padding
     append_ground(mesh, 0.0f, 0.0f, 0.0f, float(scene.grid) + 2.0f, 1);
+    const Mesh sphere = test_meshes::sphere(scene.sphere_slices, scene.sphere_stacks);
     for (int j = 0; j < scene.grid; ++j)
         for (int i = 0; i < scene.grid; ++i)
-            append_uv_sphere(mesh, {float(i) - offset, 0.5f, float(j) - offset}, kRadius,
-                             scene.sphere_slices, scene.sphere_stacks);
+            append_placed(mesh, sphere, {float(i) - offset, 0.5f, float(j) - offset}, kRadius);
     const float extent = float(scene.grid);
     // Close enough that the ground fills most of the frame, as in the anchors' measurement.
     scene.camera.eye = {0.0f, 0.6f * extent + 0.5f, 0.55f * extent + 1.0f};
@@ -93,7 +79,7 @@ void ripple_spheres(SphereGridScene& scene, float time) {
         glm::vec3* p = scene.mesh.positions.data() + kGroundVertices + size_t(s) * per_sphere;
         const glm::vec3* n = scene.mesh.normals.data() + kGroundVertices + size_t(s) * per_sphere;
         for (size_t v = 0; v < per_sphere; ++v) {
-            const float ripple = 0.05f * std::sin(6.0f * n[v].y + 3.0f * time + float(s));
+            const float ripple = 0.05f * std::sin(6.0f * n[v].z + 3.0f * time + float(s));
             p[v] = centre + (kRadius + ripple) * n[v];
         }
     }

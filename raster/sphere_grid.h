@@ -1,6 +1,6 @@
 // The benchmark scene of research/rasterizer-anchors.md 3.2: a ground plane under a g x g grid
-// of UV spheres (the seed's sphere: n = (cos 2pi u sin pi v, sin 2pi u sin pi v, cos pi v),
-// p = c + R n), sized to a requested triangle count. Tests and bench_raytrace use it so the
+// of UV spheres (test_meshes::sphere, the seed's parametrisation), sized to a requested
+// triangle count. Tests and bench_raytrace use it so the
 // rasterizer and Embree are compared on the anchors' workload.
 #pragma once
 #include <cstddef>
@@ -9,11 +9,6 @@
 #include "raster/mesh.h"
 
 namespace tessera {
-
-// Appends a UV sphere of `slices` x `stacks` quads; the pole rows are fans (one triangle per
-// quad), so no triangle is degenerate: 2 * slices * (stacks - 1) triangles, outward normals,
-// counter-clockwise seen from outside.
-void append_uv_sphere(Mesh& mesh, const glm::vec3& centre, float radius, int slices, int stacks);
 
 // Appends a square in the plane y = height, centred on (x, z), `cells` x `cells` quads,
 // facing +y.

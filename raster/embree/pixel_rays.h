@@ -5,8 +5,9 @@
 // and keeps what lies between the near and far planes (-w <= z <= w). The ray for a pixel
 // therefore starts on the near plane and ends on the far plane: origin = unproject(ndc, -1),
 // direction = unproject(ndc, +1) - origin, so t in [0, 1] spans exactly the clip volume.
-// Unprojection runs in double: the inverse of a perspective matrix with near/far = 1e-3
-// loses most float digits, and the ray's cost dwarfs the arithmetic.
+// The unprojected points are affine in the window position, so a ray costs two 4-vector
+// evaluations and two divisions. Both run in double: the far point's w is 1/far, the
+// difference of two terms near 1/near, and float would lose a dozen bits of it there.
 #pragma once
 #include <glm/glm.hpp>
 
@@ -25,12 +26,31 @@ public:
     // Window depth z_ndc * 0.5 + 0.5 of a world point, as the rasterizer stores it.
     float window_depth(const glm::vec3& world) const;
 
+    // The window depth of the plane through a, b, c as a function of the window position:
+    // the rasterizer's depth plane Z(X, Y) = aX + bY + c (seeds/000 item 5), which a plane
+    // keeps under any projective map. Evaluating it at a pixel centre gives the depth of the
+    // ray's hit to double precision, where the hit distance Embree returns loses digits on
+    // triangles seen nearly edge-on.
+    struct DepthPlane {
+        double per_x = 0, per_y = 0, at_zero = 0;
+        bool valid = false;  // false for a plane through the eye (seen edge-on)
+        float at(double x, double y) const { return float(per_x * x + per_y * y + at_zero); }
+    };
+    DepthPlane depth_plane(const glm::vec3& a, const glm::vec3& b, const glm::vec3& c) const;
+
     int width() const { return width_; }
     int height() const { return height_; }
 
 private:
+    // A homogeneous point affine in the window position: origin + x * per_x + y * per_y.
+    struct Affine {
+        glm::dvec4 origin, per_x, per_y;
+        glm::dvec4 at(double x, double y) const { return origin + x * per_x + y * per_y; }
+    };
+
     glm::dmat4 view_projection_;
     glm::dmat4 inverse_;
+    Affine near_, far_;  // unprojections onto the near (z_ndc = -1) and far (+1) planes
     int width_;
     int height_;
 };

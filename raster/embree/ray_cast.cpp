@@ -7,22 +7,39 @@
 namespace tessera::rt {
 namespace {
 
+// The depth plane of the last triangle written: neighbouring pixels mostly hit the same one.
+struct DepthCache {
+    unsigned triangle = kNoTriangle;
+    PixelRays::DepthPlane plane;
+};
+
 struct Frame {
     const RayScene& scene;
     const PixelRays& rays;
     VisibilityBuffer& out;
 
+    // Depth from the hit triangle's plane at the pixel centre (pixel_rays.h); from the hit
+    // point only for a plane through the eye, which a ray can hit only on its edge.
     void write(int x, int y, unsigned primitive, const glm::vec3& origin,
-               const glm::vec3& direction, float t) const {
+               const glm::vec3& direction, float t, DepthCache& cache) const {
         const size_t pixel = size_t(y) * size_t(out.width) + size_t(x);
         out.triangle[pixel] = primitive;
-        out.depth[pixel] = rays.window_depth(origin + t * direction);
+        if (primitive != cache.triangle) {
+            const Mesh& mesh = scene.mesh();
+            const uint32_t* index = &mesh.indices[3 * size_t(primitive)];
+            cache.plane = rays.depth_plane(mesh.positions[index[0]], mesh.positions[index[1]],
+                                           mesh.positions[index[2]]);
+            cache.triangle = primitive;
+        }
+        out.depth[pixel] = cache.plane.valid ? cache.plane.at(x + 0.5, y + 0.5)
+                                             : rays.window_depth(origin + t * direction);
     }
 };
 
 void trace_single(const Frame& frame, const ImageTile& tile) {
     RTCIntersectContext context;
     rtcInitIntersectContext(&context);
+    DepthCache cache;
     for (int y = tile.y0; y < tile.y1; ++y)
         for (int x = tile.x0; x < tile.x1; ++x) {
             glm::vec3 origin, direction;
@@ -40,7 +57,7 @@ void trace_single(const Frame& frame, const ImageTile& tile) {
             hit.hit.geomID = RTC_INVALID_GEOMETRY_ID;
             rtcIntersect1(frame.scene.handle(), &context, &hit);
             if (hit.hit.geomID != RTC_INVALID_GEOMETRY_ID)
-                frame.write(x, y, hit.hit.primID, origin, direction, hit.ray.tfar);
+                frame.write(x, y, hit.hit.primID, origin, direction, hit.ray.tfar, cache);
         }
 }
 
@@ -48,6 +65,7 @@ template <int N>
 void trace_packets(const Frame& frame, const ImageTile& tile) {
     using P = Packet<N>;
     RTCIntersectContext context = coherent_context();
+    DepthCache cache;
     for (int by = tile.y0; by < tile.y1; by += P::kHeight)
         for (int bx = tile.x0; bx < tile.x1; bx += P::kWidth) {
             typename P::RayHit packet;
@@ -66,7 +84,7 @@ void trace_packets(const Frame& frame, const ImageTile& tile) {
                 if (valid[lane] && packet.hit.geomID[lane] != RTC_INVALID_GEOMETRY_ID)
                     frame.write(bx + lane % P::kWidth, by + lane / P::kWidth,
                                 packet.hit.primID[lane], origin[lane], direction[lane],
-                                packet.ray.tfar[lane]);
+                                packet.ray.tfar[lane], cache);
         }
 }
 

@@ -60,9 +60,10 @@ RayScene::RayScene(const RayDevice& device, const Mesh& mesh, BvhUpdate update)
                                     " indices, not a multiple of 3");
     const RTCDevice handle = device.handle();
     scene_ = rtcNewScene(handle);
+    rtcSetSceneFlags(scene_, RTC_SCENE_FLAG_ROBUST);
     device.check("cannot create a scene");
     if (update != BvhUpdate::none) {
-        rtcSetSceneFlags(scene_, RTC_SCENE_FLAG_DYNAMIC);
+        rtcSetSceneFlags(scene_, RTC_SCENE_FLAG_DYNAMIC | RTC_SCENE_FLAG_ROBUST);
         rtcSetSceneBuildQuality(scene_, RTC_BUILD_QUALITY_LOW);
     }
     if (mesh.triangle_count() > 0 && mesh.vertex_count() > 0) {

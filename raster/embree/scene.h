@@ -14,6 +14,11 @@
 // REFIT is honoured only under a LOW scene) or by a LOW-quality rebuild; bench_raytrace
 // measures which wins.
 //
+// Robustness: scenes are built with RTC_SCENE_FLAG_ROBUST. Without it Embree's faster
+// traversal missed a triangle stretched from the near plane to w = 36 whose interior covered
+// the pixel centre 0.7 pixels from any edge (embree_raster_test), where the rasterizer,
+// rightly, drew it; the two renderers must agree on such pixels.
+//
 // Bad geometry: Embree itself skips triangles with non-finite vertices or out-of-range
 // indices (they are never hit), and zero-area triangles cannot be hit; the scene counts all
 // three in defects() so the command can report them while the frame still renders.
