@@ -40,9 +40,13 @@ namespace {
 
 namespace fs = std::filesystem;
 
-// Set by SIGINT, read between frames: the render stops after the frame in hand.
+// Set by SIGINT, read between frames: the render stops after the frame in hand. The default
+// action comes back at once, so a second Ctrl-C ends a frame that takes too long.
 volatile std::sig_atomic_t g_interrupted = 0;
-extern "C" void on_interrupt(int) { g_interrupted = 1; }
+extern "C" void on_interrupt(int) {
+    g_interrupted = 1;
+    std::signal(SIGINT, SIG_DFL);
+}
 
 // Frames beyond this many pixels would need the streamed tiled output (not built yet):
 // 8192 x 8192 keeps the float frame, visibility and encode buffers near 2 GiB.
