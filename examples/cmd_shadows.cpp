@@ -112,7 +112,7 @@ Run define_shadows(CLI::App& root) {
     CLI::App* command = root.add_subcommand(
         "shadows", "compare shadow maps with Embree shadow rays on the sphere-grid scene");
     command->add_option("--triangles", options->triangles, "scene size")
-        ->check(CLI::Range(size_t(24), size_t(50'000'000)))
+        ->check(CLI::Range(size_t(24), size_t(16'000'000)))
         ->capture_default_str();
     command->add_option("--size", options->size, "image WxH")->capture_default_str();
     command->add_option("--lights", options->lights, "point lights")
