@@ -7,6 +7,10 @@
 //
 //   bench_raytrace --benchmark_repetitions=5 --benchmark_report_aggregates_only=true
 //
+// On a shared machine the wall times carry other processes' load; with threads = 1 the whole
+// frame runs on the benchmark's thread, so its CPU time is the cleaner figure to compare.
+// (Rate counters - Mrays/s, Mprims/s - are computed from wall time.)
+//
 // Scenes (mesh, BVH, visibility buffers) are built once per configuration and cached: a 4M-
 // triangle scene costs seconds to generate and build, which only the BVH benchmarks time.
 #include <benchmark/benchmark.h>
