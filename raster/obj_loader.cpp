@@ -86,6 +86,7 @@ std::string first_line(std::string text) {
 }  // namespace
 
 Mesh parse_obj(const std::string& text, const std::string& name, ObjLoadStats* stats) {
+    if (text.find('\0') != std::string::npos) fail(name, "binary data, not an OBJ text file");
     const std::vector<uint8_t> bad_records = check_records(text, name);
     tinyobj::ObjReaderConfig config;
     config.triangulate = false;  // fan from the first vertex ourselves (the documented order)

@@ -9,6 +9,12 @@
 //   r.render(mesh, camera.view_projection(), tessera::Viewport(w, h), options, vis,
 //            {shade_pass, blend_pass}, &color);
 //
+// A tile pass (tile_pass.h) gets a TileContext: the tile's rectangle, its row of the
+// VisibilityBuffer (triangle id + window depth), a linear RGBA colour tile, the mesh and its
+// clip-space vertices, and for_each_transparent() for blending. Shading interpolates with
+// perspective-correct barycentrics (barycentrics.h: triangle_barycentrics(mesh, *ctx.clip, id,
+// *ctx.viewport).at(x + 0.5f, y + 0.5f, l0, l1, l2), in float or simd::vfloat lanes).
+//
 // Pipeline (DESIGN.md "One frame"): vertex stage (SIMD, TBB over vertices) -> per chunk of
 // triangles: clip (near/far, guard band), cull, setup, bin into per-chunk tile bins (TBB over
 // chunks, no locks) -> per tile (TBB over tiles): clear, rasterize the bins in submission

@@ -3,7 +3,8 @@
 // band derived from the fixed-point limits (fixed_point.h).
 //
 // The mapping is written once as a template over float and simd::vfloat so that the SIMD
-// vertex stage and the scalar clipper/reference produce bit-identical window coordinates.
+// vertex stage and the scalar clipper/reference produce bit-identical window coordinates
+// (the library builds with -ffp-contract=off so no compiler-chosen FMA breaks that).
 #pragma once
 #include <cstdint>
 #include <stdexcept>

@@ -55,6 +55,7 @@ TEST(RasterIo, ObjErrorsNameTheProblem) {
     EXPECT_NE(error_of("v 0 0\n").find("expected 3 numbers"), std::string::npos);
     EXPECT_NE(error_of("v 0 0 0\nv 1 0 0\nf 1 2\n"), "");
     EXPECT_EQ(error_of("# only a comment\n"), "");
+    EXPECT_NE(error_of(std::string("v 0 0 0\n\0\x01\x02", 11)).find("binary"), std::string::npos);
 }
 
 TEST(RasterIo, ObjBadVerticesMakeTheirTrianglesDegenerate) {

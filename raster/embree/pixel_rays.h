@@ -7,7 +7,7 @@
 // direction = unproject(ndc, +1) - origin, so t in [0, 1] spans exactly the clip volume.
 // The unprojected points are affine in the window position, so a ray costs two 4-vector
 // evaluations and two divisions. Both run in double: the far point's w is 1/far, the
-// difference of two terms near 1/near, and float would lose a dozen bits of it there.
+// difference of two terms near 1/near, so float would lose about log2(far/near) bits of it.
 #pragma once
 #include <glm/glm.hpp>
 

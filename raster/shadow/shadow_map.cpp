@@ -54,6 +54,11 @@ ShadowMap::ShadowMap(Rasterizer& rasterizer, const Mesh& mesh, const glm::vec3& 
                                     " is outside 0 .. 8");
     if (!(options.normal_offset >= 0.0f) || !(options.depth_bias >= 0.0f))
         throw std::invalid_argument("shadow bias must be zero or positive");
+    render(rasterizer, mesh, light);
+}
+
+void ShadowMap::render(Rasterizer& rasterizer, const Mesh& mesh, const glm::vec3& light) {
+    light_ = light;
     const Bounds bounds = mesh_bounds(mesh);
     const bool empty = !(bounds.lo.x <= bounds.hi.x);
     const glm::vec3 centre = empty ? light + glm::vec3(0, 0, -1) : 0.5f * (bounds.lo + bounds.hi);
@@ -74,39 +79,57 @@ ShadowMap::ShadowMap(Rasterizer& rasterizer, const Mesh& mesh, const glm::vec3& 
     camera.near = std::max(distance - radius, camera.far * 1e-3f);
     view_projection_ = camera.view_projection();
     texel_per_depth_ =
-        2.0f * std::tan(glm::radians(camera.fovy_deg) * 0.5f) / float(options.resolution);
+        2.0f * std::tan(glm::radians(camera.fovy_deg) * 0.5f) / float(options_.resolution);
     RasterOptions raster;
     raster.cull = CullMode::none;  // both faces of a surface cast shadows
-    rasterizer.render(mesh, view_projection_, Viewport(options.resolution, options.resolution),
+    rasterizer.render(mesh, view_projection_, Viewport(options_.resolution, options_.resolution),
                       raster, depth_);
 }
 
-float ShadowMap::lit_fraction(const glm::vec3& position, const glm::vec3& normal) const {
+template <bool kMajority>
+int ShadowMap::count_lit(const glm::vec3& position, const glm::vec3& normal) const {
+    const int r = options_.pcf_radius, taps = (2 * r + 1) * (2 * r + 1);
     const glm::vec3 to_light = light_ - position;
-    const float distance = glm::length(to_light);
-    const float texel = texel_per_depth_ * std::max(glm::dot(position - light_, axis_), 0.0f);
+    const float inverse_distance = 1.0f / std::sqrt(glm::dot(to_light, to_light));
+    const float texel = texel_per_depth_ * std::max(glm::dot(-to_light, axis_), 0.0f);
     // Slope-scaled normal offset (shadow_map.h): sin of the angle between normal and light.
-    const float cosine = glm::dot(normal, to_light) / distance;
+    const float cosine = glm::dot(normal, to_light) * inverse_distance;
     const float sine = std::sqrt(std::max(0.0f, 1.0f - cosine * cosine));
     const glm::vec3 receiver = position + normal * (options_.normal_offset * sine * texel) +
-                               to_light * (options_.depth_bias * texel / distance);
+                               to_light * (options_.depth_bias * texel * inverse_distance);
     const glm::vec4 clip = view_projection_ * glm::vec4(receiver, 1.0f);
-    if (!(clip.w > 0.0f)) return 1.0f;  // behind the light's view: outside the map
+    if (!(clip.w > 0.0f)) return taps;  // behind the light's view: outside the map
     const int size = options_.resolution;
-    const float x = (clip.x / clip.w * 0.5f + 0.5f) * float(size);
-    const float y = (0.5f - clip.y / clip.w * 0.5f) * float(size);
-    const float z = clip.z / clip.w * 0.5f + 0.5f;
-    if (!(x >= 0.0f && x < float(size) && y >= 0.0f && y < float(size))) return 1.0f;
-    const int cx = int(x), cy = int(y), r = options_.pcf_radius;
-    int lit = 0;
-    for (int ty = cy - r; ty <= cy + r; ++ty)
-        for (int tx = cx - r; tx <= cx + r; ++tx) {
-            // Taps beyond the map's edge see nothing stored: lit.
-            if (tx < 0 || ty < 0 || tx >= size || ty >= size ||
-                z <= depth_.depth[size_t(ty) * size_t(size) + size_t(tx)])
-                ++lit;
+    const float inverse_w = 1.0f / clip.w;
+    const float x = (clip.x * inverse_w * 0.5f + 0.5f) * float(size);
+    const float y = (0.5f - clip.y * inverse_w * 0.5f) * float(size);
+    const float z = clip.z * inverse_w * 0.5f + 0.5f;
+    if (!(x >= 0.0f && x < float(size) && y >= 0.0f && y < float(size))) return taps;
+    const int cx = int(x), cy = int(y);
+    // Taps beyond the map's edge see nothing stored: lit. Count the dark ones inside.
+    const int x0 = std::max(cx - r, 0), x1 = std::min(cx + r, size - 1);
+    const int y0 = std::max(cy - r, 0), y1 = std::min(cy + r, size - 1);
+    const int most_dark = taps / 2;  // lit() needs at least taps - taps/2 lit
+    int dark = 0, seen = 0;
+    for (int ty = y0; ty <= y1; ++ty) {
+        const float* row = depth_.depth.data() + size_t(ty) * size_t(size);
+        for (int tx = x0; tx <= x1; ++tx) {
+            dark += z > row[tx];
+            ++seen;
         }
-    return float(lit) / float((2 * r + 1) * (2 * r + 1));
+        if (kMajority && (dark > most_dark || seen - dark >= taps - most_dark)) break;
+    }
+    return taps - dark - (kMajority ? (y1 - y0 + 1) * (x1 - x0 + 1) - seen : 0);
+}
+
+float ShadowMap::lit_fraction(const glm::vec3& position, const glm::vec3& normal) const {
+    const int taps = (2 * options_.pcf_radius + 1) * (2 * options_.pcf_radius + 1);
+    return float(count_lit<false>(position, normal)) / float(taps);
+}
+
+bool ShadowMap::lit(const glm::vec3& position, const glm::vec3& normal) const {
+    const int taps = (2 * options_.pcf_radius + 1) * (2 * options_.pcf_radius + 1);
+    return count_lit<true>(position, normal) >= taps - taps / 2;
 }
 
 LightTest shadow_map_test(std::span<const ShadowMap> maps) {

@@ -43,16 +43,18 @@ struct ShadowMapOptions {
 class ShadowMap {
 public:
     // Renders the depth of `mesh` as seen from `light`. Throws std::invalid_argument for a
-    // resolution outside 16 .. kMaxViewport, a negative radius or bias.
+    // resolution outside 16 .. kMaxViewport, a PCF radius outside 0 .. 8 or a negative bias.
     ShadowMap(Rasterizer& rasterizer, const Mesh& mesh, const glm::vec3& light,
               const ShadowMapOptions& options = {});
+
+    // Renders again (the next frame: the mesh or light moved), reusing the map's memory.
+    void render(Rasterizer& rasterizer, const Mesh& mesh, const glm::vec3& light);
 
     // Fraction of the PCF taps that see `position` (pushed off the surface along `normal`)
     // from the light.
     float lit_fraction(const glm::vec3& position, const glm::vec3& normal) const;
-    bool lit(const glm::vec3& position, const glm::vec3& normal) const {
-        return lit_fraction(position, normal) >= 0.5f;
-    }
+    // Whether at least half the taps see it (stops reading taps once the answer is known).
+    bool lit(const glm::vec3& position, const glm::vec3& normal) const;
 
     const glm::vec3& light() const { return light_; }
     const glm::mat4& view_projection() const { return view_projection_; }
@@ -60,6 +62,11 @@ public:
     const ShadowMapOptions& options() const { return options_; }
 
 private:
+    // Counts lit taps; with kMajority, stops once at least half are lit or more than half
+    // are not, returning a count on the right side of half.
+    template <bool kMajority>
+    int count_lit(const glm::vec3& position, const glm::vec3& normal) const;
+
     glm::vec3 light_;
     ShadowMapOptions options_;
     glm::mat4 view_projection_;
