@@ -14,14 +14,17 @@
 
 #include <cmath>
 
+#include "raster/mesh.h"
 #include "raster/simd/simd.h"
+#include "raster/vertex_stage.h"
+#include "raster/viewport.h"
 
 namespace tessera {
 
 struct PerspectiveBarycentrics {
     // r_i(x, y) = e[i].x * x + e[i].y * y + e[i].z in window pixel coordinates (pixel centre of
     // column c is x = c + 0.5, rows top to bottom).
-    glm::vec3 e[3];
+    glm::vec3 e[3]{};
 
     // `width` x `height`: the viewport (window = ((x_ndc + 1) W/2, (1 - y_ndc) H/2)).
     static PerspectiveBarycentrics from_clip(const glm::vec4& c0, const glm::vec4& c1, const glm::vec4& c2,
@@ -52,5 +55,16 @@ struct PerspectiveBarycentrics {
         l2 = r2 * inv;
     }
 };
+
+// Barycentrics of triangle `id` of `mesh` from the clip-space vertices the rasterizer computed
+// (TileContext::clip, Rasterizer::clip_vertices()). The Embree path computes the clip-space
+// positions with clip_position() (vertex_stage.h) from the same world positions and passes
+// them to from_clip(): same bits, same coefficients.
+inline PerspectiveBarycentrics triangle_barycentrics(const Mesh& mesh, const ClipVertices& clip, uint32_t id,
+                                                     const Viewport& viewport) {
+    const uint32_t* index = &mesh.indices[3 * size_t(id)];
+    return PerspectiveBarycentrics::from_clip(clip.clip(index[0]), clip.clip(index[1]), clip.clip(index[2]),
+                                              viewport.width, viewport.height);
+}
 
 }  // namespace tessera

@@ -52,8 +52,8 @@ void TileContext::for_each_transparent(
     const size_t capacity = size_t(width()) * size_t(height()) + simd::kLanes;
     if (fragments.size() < capacity) fragments.resize(capacity);
     for (const ChunkBins& chunk : *work->chunks) {
-        for (const uint32_t* e = chunk.begin(work->tile); e != chunk.end(work->tile); ++e) {
-            const TriangleSetup& t = chunk.setups[*e];
+        for (const TriangleSetup* e = chunk.begin(work->tile); e != chunk.end(work->tile); ++e) {
+            const TriangleSetup& t = *e;
             if (!t.transparent) continue;
             const size_t n = rasterize_tested(t, rect, depth, stride, fragments.data());
             if (n) blend(t.triangle, std::span<const Fragment>(fragments.data(), n));
@@ -123,8 +123,8 @@ void Rasterizer::render(const Mesh& mesh, const glm::mat4& view_projection, cons
             TileBuffers& buffers = scratch.buffers;
             buffers.clear(grid.size);
             for (const ChunkBins& chunk : s.chunks)
-                for (const uint32_t* e = chunk.begin(tile); e != chunk.end(tile); ++e) {
-                    const TriangleSetup& t = chunk.setups[*e];
+                for (const TriangleSetup* e = chunk.begin(tile); e != chunk.end(tile); ++e) {
+                    const TriangleSetup& t = *e;
                     if (!t.transparent) rasterize_opaque(t, rect, buffers);
                 }
 
@@ -133,11 +133,16 @@ void Rasterizer::render(const Mesh& mesh, const glm::mat4& view_projection, cons
             uint64_t visible = 0;
             for (int y = 0; y < h; ++y) {
                 const size_t row = size_t(rect.y0 + y) * viewport.width + rect.x0;
-                for (int x = 0; x < w; x += simd::kStampW) {
-                    const size_t n = size_t(std::min(simd::kStampW, w - x));
+                int x = 0;
+                for (; x + simd::kStampW <= w; x += simd::kStampW) {  // one stamp row at a time
                     const size_t i = buffers.index(x, y);
-                    std::memcpy(&visibility.triangle[row + x], &buffers.triangle[i], n * sizeof(uint32_t));
-                    std::memcpy(&visibility.depth[row + x], &buffers.depth[i], n * sizeof(float));
+                    std::memcpy(&visibility.triangle[row + x], &buffers.triangle[i], simd::kStampW * sizeof(uint32_t));
+                    std::memcpy(&visibility.depth[row + x], &buffers.depth[i], simd::kStampW * sizeof(float));
+                }
+                for (; x < w; ++x) {
+                    const size_t i = buffers.index(x, y);
+                    visibility.triangle[row + x] = buffers.triangle[i];
+                    visibility.depth[row + x] = buffers.depth[i];
                 }
                 if (stats)
                     for (int x = 0; x < w; ++x) visible += visibility.triangle[row + x] != kNoTriangle;

@@ -28,8 +28,8 @@ WindowVertex project_and_snap(const Viewport& viewport, const glm::vec4& clip);
 // positions (D3D11.3 §3.4.1) in double precision; every path (SIMD tiles, scalar reference)
 // evaluates this same expression, so depths agree to the bit.
 struct DepthPlane {
-    int32_t ax = 0, ay = 0;
     float a = 0.0f, b = 0.0f, c = 0.0f;
+    int16_t ax = 0, ay = 0;  // |window coordinates| < 2^14 (fixed_point.h)
 
     static DepthPlane from(const WindowVertex& v0, const WindowVertex& v1, const WindowVertex& v2);
     float at(int x, int y) const;
@@ -51,6 +51,7 @@ struct TriangleSetup {
     uint8_t small;        // vertex box < kSmallExtent: int32 traversal anywhere near the box
     uint8_t transparent;  // rasterized after the opaque pass, without depth writes
 };
+static_assert(sizeof(TriangleSetup) == 80, "bins copy setups: keep them compact");
 
 enum class SetupResult { drawn, zero_area, culled_face, no_samples };
 
