@@ -81,14 +81,15 @@ TESSERA_NOISE_INLINE Noise3 fbm(glm::vec3 p, const Fractal& f) {
 
 // Ridged multifractal (Musgrave): each octave is (offset - |noise|)^2, weighted by the previous
 // octave's signal so that ridges get sharp detail and valleys stay smooth. In [0, 1] for
-// offset = 1. The gradient carries the weight's dependence on the previous octave; it is
+// offset = 1. It folds gradient noise: the zero lines of value noise run along the lattice axes
+// and would make the ridges a grid. The gradient carries the weight's dependence on the previous octave; it is
 // undefined exactly on a crest (|noise| = 0), like the surface's own crease.
 TESSERA_NOISE_INLINE Noise2 ridged(glm::vec2 p, const Fractal& f, float offset = 1.0f) {
     float value = 0.0f, amplitude = 1.0f, frequency = 1.0f;
     float weight = 1.0f;
     glm::vec2 gradient(0.0f), weight_gradient(0.0f);
     for (int i = 0; i < f.octaves; ++i) {
-        const Noise2 n = value_noise(p * frequency, octave_seed(f.seed, i));
+        const Noise2 n = gradient_noise(p * frequency, octave_seed(f.seed, i));
         const float ridge = offset - (n.value < 0.0f ? -n.value : n.value);
         const glm::vec2 ridge_gradient = (n.value < 0.0f ? frequency : -frequency) * n.gradient;
         const float signal = ridge * ridge * weight;

@@ -24,8 +24,12 @@ namespace {
 // over NFS) never collide on a temporary. The leading dot keeps it out of frame globs.
 fs::path temporary_beside(const fs::path& target) {
     static std::atomic<unsigned> counter{0};
-    const std::string name = "." + target.filename().string() + ".tmp" +
-                             std::to_string(getpid()) + "_" + std::to_string(counter++);
+    std::string name = ".";
+    name += target.filename().string();
+    name += ".tmp";
+    name += std::to_string(getpid());
+    name += '_';
+    name += std::to_string(counter++);
     return target.parent_path() / name;
 }
 

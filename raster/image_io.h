@@ -38,6 +38,10 @@ void write_image(const std::filesystem::path& path, const ImageView& image);
 // Reads any image OpenImageIO understands. Throws tessera::Error with the reason.
 FloatImage read_image(const std::filesystem::path& path);
 
+// True when `path` is an image OpenImageIO can open whose header says width x height: how
+// --resume recognises a finished frame (writes are atomic, so a present file is complete).
+bool image_is_complete(const std::filesystem::path& path, int width, int height);
+
 // True when OpenImageIO has a writer for the extension of `path` (".png", ".exr", ...).
 bool image_format_supported(const std::filesystem::path& path);
 

@@ -143,7 +143,7 @@ TEST(ProceduralNoise, RidgedGradientMatchesAwayFromCreases) {
         bool near_crease = false;
         float freq = 1;
         for (int i = 0; i < f.octaves; ++i, freq *= 2) {
-            const tp::Noise2 n = tp::value_noise(p * freq, tp::octave_seed(f.seed, i));
+            const tp::Noise2 n = tp::gradient_noise(p * freq, tp::octave_seed(f.seed, i));
             near_crease |= std::abs(n.value) < 4 * kStep * freq * (std::abs(n.gradient.x) + std::abs(n.gradient.y) + 1);
         }
         if (near_crease) continue;

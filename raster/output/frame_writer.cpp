@@ -1,0 +1,79 @@
+#include "raster/output/frame_writer.h"
+
+#include "raster/trace.h"
+
+namespace tessera {
+
+FrameWriter::FrameWriter(size_t max_pending)
+    : max_pending_(max_pending == 0 ? 1 : max_pending), worker_([this] { run(); }) {}
+
+FrameWriter::~FrameWriter() {
+    {
+        std::unique_lock lock(mutex_);
+        changed_.wait(lock, [&] { return queue_.empty() && in_flight_ == 0; });
+        stopping_ = true;
+    }
+    changed_.notify_all();
+    worker_.join();
+}
+
+void FrameWriter::rethrow_failure_locked() {
+    if (failure_) {
+        std::exception_ptr failure = failure_;
+        failure_ = nullptr;
+        std::rethrow_exception(failure);
+    }
+}
+
+void FrameWriter::submit(std::filesystem::path path, OwnedImage image) {
+    std::unique_lock lock(mutex_);
+    changed_.wait(lock, [&] { return queue_.size() + in_flight_ < max_pending_ || failure_; });
+    rethrow_failure_locked();
+    queue_.push_back({std::move(path), std::move(image)});
+    changed_.notify_all();
+}
+
+void FrameWriter::finish() {
+    std::unique_lock lock(mutex_);
+    changed_.wait(lock, [&] { return (queue_.empty() && in_flight_ == 0) || failure_; });
+    rethrow_failure_locked();
+}
+
+std::vector<std::filesystem::path> FrameWriter::written() const {
+    std::lock_guard lock(mutex_);
+    return written_;
+}
+
+void FrameWriter::run() {
+    for (;;) {
+        Job job;
+        {
+            std::unique_lock lock(mutex_);
+            changed_.wait(lock, [&] { return !queue_.empty() || stopping_; });
+            if (queue_.empty()) return;
+            job = std::move(queue_.front());
+            queue_.pop_front();
+            ++in_flight_;
+        }
+        std::exception_ptr failure;
+        try {
+            TraceScope scope("write frame", "io");
+            write_image(job.path, job.image.view());
+        } catch (...) {
+            failure = std::current_exception();
+        }
+        {
+            std::lock_guard lock(mutex_);
+            --in_flight_;
+            if (failure) {
+                if (!failure_) failure_ = failure;
+                queue_.clear();  // frames after a failed one are not written
+            } else {
+                written_.push_back(job.path);
+            }
+        }
+        changed_.notify_all();
+    }
+}
+
+}  // namespace tessera

@@ -1,0 +1,61 @@
+// Writes frames on a background thread while the next frame renders. Memory stays bounded:
+// submit() blocks while `max_pending` frames are still being encoded and written, so a slow
+// disk slows the render instead of piling frames up. A write that failed is rethrown (as
+// tessera::Error) by the next submit() or by finish(), so no failure goes unreported.
+#pragma once
+#include <condition_variable>
+#include <cstdint>
+#include <deque>
+#include <exception>
+#include <filesystem>
+#include <mutex>
+#include <thread>
+#include <vector>
+
+#include "raster/image_io.h"
+
+namespace tessera {
+
+// Pixels the writer owns while the renderer moves on to the next frame.
+struct OwnedImage {
+    int width = 0;
+    int height = 0;
+    int channels = 0;
+    PixelType type = PixelType::u8;
+    std::vector<uint8_t> bytes;
+    ImageView view() const { return {width, height, channels, type, bytes.data()}; }
+};
+
+class FrameWriter {
+public:
+    explicit FrameWriter(size_t max_pending = 1);
+    ~FrameWriter();  // finishes queued writes; errors are dropped here (call finish() to see them)
+    FrameWriter(const FrameWriter&) = delete;
+    FrameWriter& operator=(const FrameWriter&) = delete;
+
+    void submit(std::filesystem::path path, OwnedImage image);
+    // Waits until every submitted frame is on disk; rethrows the first failure.
+    void finish();
+    // Paths written so far, in completion order.
+    std::vector<std::filesystem::path> written() const;
+
+private:
+    struct Job {
+        std::filesystem::path path;
+        OwnedImage image;
+    };
+    void run();
+    void rethrow_failure_locked();
+
+    const size_t max_pending_;
+    mutable std::mutex mutex_;
+    std::condition_variable changed_;
+    std::deque<Job> queue_;
+    size_t in_flight_ = 0;
+    bool stopping_ = false;
+    std::exception_ptr failure_;
+    std::vector<std::filesystem::path> written_;
+    std::thread worker_;
+};
+
+}  // namespace tessera
