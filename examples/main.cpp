@@ -35,6 +35,17 @@ void print_error(const std::string& message, const std::string& hint) {
     if (!hint.empty()) std::fprintf(stderr, "hint: %s\n", hint.c_str());
 }
 
+// "tessera generate rd": the chain of subcommands the user typed, for the --help hint.
+std::string deepest_command(const CLI::App& app) {
+    std::string name = "tessera";
+    for (const CLI::App* level = &app;;) {
+        const auto chosen = level->get_subcommands();
+        if (chosen.empty()) return name;
+        level = chosen.front();
+        name += " " + level->get_name();
+    }
+}
+
 // CLI11 messages sometimes span lines; the contract is one line.
 std::string one_line(std::string text) {
     std::replace(text.begin(), text.end(), '\n', ' ');
@@ -70,8 +81,7 @@ int main(int argc, char** argv) {
         } catch (const CLI::Success& done) {
             return app.exit(done);  // --help, --version
         } catch (const CLI::ParseError& error) {
-            for (const CLI::App* sub : app.get_subcommands())
-                hint_command = "tessera " + sub->get_name();
+            hint_command = deepest_command(app);
             if (app.get_subcommands().empty() && error.get_name() == "RequiredError")
                 print_error("no command given", "run 'tessera --help' to list the commands");
             else
@@ -79,7 +89,7 @@ int main(int argc, char** argv) {
             return 2;
         }
         for (const CLI::App* sub : app.get_subcommands()) {
-            hint_command = "tessera " + sub->get_name();
+            hint_command = deepest_command(app);
             return runs.at(sub)();
         }
         return 2;

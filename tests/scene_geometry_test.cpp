@@ -8,6 +8,7 @@
 
 #include <vector>
 
+#include "raster/geometry/box.h"
 #include "raster/geometry/extrusion.h"
 #include "raster/geometry/param_surface.h"
 #include "raster/geometry/surfaces.h"
@@ -143,4 +144,21 @@ TEST(SceneGeometry, CatmullRomPassesThroughItsPointsWithExactDerivatives) {
     const float s = 0.41f, h = 1e-3f;
     EXPECT_LT(glm::length((c.position(s + h) - c.position(s - h)) / (2 * h) - c.derivative(s)), 2e-2f);
     EXPECT_LT(glm::length((c.derivative(s + h) - c.derivative(s - h)) / (2 * h) - c.second_derivative(s)), 0.2f);
+}
+
+TEST(SceneGeometry, BoxFacesPointOutwardWithFullUvSquares) {
+    const Mesh m = box_mesh({1.0f, 2.0f, 0.5f});
+    ASSERT_EQ(m.vertex_count(), 24u);
+    ASSERT_EQ(m.triangle_count(), 12u);
+    expect_winding_follows_normals(m, "box");
+    for (size_t i = 0; i < m.vertex_count(); ++i) {
+        EXPECT_GT(glm::dot(m.positions[i], m.normals[i]), 0.0f);  // outward
+        // uv: u grows along the tangent, so seeds/004 frames from positions and uv agree.
+        const size_t face = i / 4 * 4;
+        const glm::vec3 along_u = m.positions[face + 1] - m.positions[face];
+        EXPECT_GT(glm::dot(along_u, glm::vec3(m.tangents[i])), 0.0f);
+        // The tangent (+u direction) lies in the face.
+        EXPECT_NEAR(glm::dot(glm::vec3(m.tangents[i]), m.normals[i]), 0.0f, 1e-6f);
+    }
+    EXPECT_THROW(box_mesh({1, 0, 1}), std::invalid_argument);
 }

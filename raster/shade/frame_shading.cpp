@@ -121,6 +121,8 @@ void FrameShading::shade_with(std::span<const CoveredPixel> pixels, std::span<gl
         ctx.material = &material;
         ctx.diffuse = texture_of(scene_, material.diffuse_texture);
         ctx.normal = material.model == ShadingModel::gouraud ? nullptr : texture_of(scene_, material.normal_texture);
+        const bool needs_uv = ctx.diffuse || ctx.normal;
+        const bool needs_colour = material.model == ShadingModel::gouraud;
         for (size_t start = count[mat]; start < count[mat + 1]; start += kLanes) {
             const int n = int(std::min<size_t>(kLanes, count[mat + 1] - start));
             uint32_t setup_for = kNoTriangle;  // consecutive pixels often share a triangle
@@ -140,16 +142,19 @@ void FrameShading::shade_with(std::span<const CoveredPixel> pixels, std::span<gl
                     const uint32_t vi = corner[k];
                     const glm::vec3 p = mesh.positions[vi];
                     const glm::vec3 nrm = mesh.normals.empty() ? glm::vec3(0.0f) : mesh.normals[vi];
-                    const glm::vec2 uv = mesh.uvs.empty() ? glm::vec2(0.0f) : mesh.uvs[vi];
-                    const glm::vec3 col = gouraud_.empty() ? glm::vec3(0.0f) : gouraud_[vi];
                     for (int a = 0; a < 3; ++a) {
                         lanes.bary[k][a][lane] = setup.e[k][a];
                         lanes.pos[k][a][lane] = p[a];
                         lanes.nrm[k][a][lane] = nrm[a];
-                        lanes.col[k][a][lane] = col[a];
                     }
-                    lanes.uv[k][0][lane] = uv.x;
-                    lanes.uv[k][1][lane] = uv.y;
+                    // Only what the material reads: the gathers dominate the kernel's cost.
+                    if (needs_uv) {
+                        const glm::vec2 uv = mesh.uvs.empty() ? glm::vec2(0.0f) : mesh.uvs[vi];
+                        lanes.uv[k][0][lane] = uv.x;
+                        lanes.uv[k][1][lane] = uv.y;
+                    }
+                    if (needs_colour)
+                        for (int a = 0; a < 3; ++a) lanes.col[k][a][lane] = gouraud_[vi][a];
                 }
             }
             if constexpr (std::is_same_v<F, float>) {
@@ -197,7 +202,7 @@ void shade_tile(const FrameShading& shading, const TileTarget& tile) {
     }
 }
 
-void blend_pixels(const FrameShading& shading, std::span<const CoveredPixel> pixels, const TileTarget& tile) {
+void blend_fragments(const FrameShading& shading, std::span<const CoveredPixel> pixels, const TileTarget& tile) {
     std::vector<glm::vec4> colours(pixels.size());
     shading.shade(pixels, colours);
     for (size_t i = 0; i < pixels.size(); ++i) {

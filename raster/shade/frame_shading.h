@@ -89,10 +89,13 @@ struct TileTarget {
 // The opaque pass of a tile: visible pixels shaded, the others given the background.
 void shade_tile(const FrameShading& shading, const TileTarget& tile);
 
-// Alpha blending as in the seed (glBlendFunc(GL_SRC_ALPHA, GL_ONE_MINUS_SRC_ALPHA)):
-// c = c_src * a_src + c_dst * (1 - a_src), for the colour and for alpha alike.
+// Alpha blending as in the seed (glBlendFunc(GL_SRC_ALPHA, GL_ONE_MINUS_SRC_ALPHA)) for the
+// colour, c = c_src * a_src + c_dst * (1 - a_src). Coverage composes as "over",
+// a = a_src + a_dst * (1 - a_src) (glBlendFuncSeparate's usual alpha factors), so a pixel
+// that was opaque stays opaque; the seed's a_src^2 + a_dst (1 - a_src) would leave frames
+// partly transparent wherever glass was drawn.
 inline glm::vec4 blend_over(glm::vec4 dst, glm::vec4 src) {
-    return src * src.a + dst * (1.0f - src.a);
+    return {glm::vec3(src) * src.a + glm::vec3(dst) * (1.0f - src.a), src.a + dst.a * (1.0f - src.a)};
 }
 
 // The transparent pass of a tile: `pixels` (inside the tile, already depth-tested

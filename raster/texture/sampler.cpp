@@ -6,10 +6,13 @@
 namespace tessera {
 namespace {
 
+// Repeat: coordinates arrive reduced to [0, 1) by safe_coordinate, so a texel index lies in
+// [-1, size] and one conditional add or subtract wraps it (no integer modulo per fetch).
 int wrap_index(int i, int size, TextureWrap wrap) {
     if (wrap == TextureWrap::clamp) return std::clamp(i, 0, size - 1);
-    const int m = i % size;
-    return m < 0 ? m + size : m;
+    if (i < 0) i += size;
+    if (i >= size) i -= size;
+    return std::clamp(i, 0, size - 1);  // guards the rounding of u * size at u just below 1
 }
 
 // Large or non-finite coordinates would overflow the int conversion; reduce them first.
@@ -43,8 +46,10 @@ glm::vec4 bilinear(const MipLevel& level, glm::vec2 uv, TextureWrap wrap) {
 
 float mip_lambda(const Texture& texture, const UvDerivatives& d) {
     const glm::vec2 size(float(texture.width()), float(texture.height()));
-    const float rho = std::max(glm::length(d.d_dx * size), glm::length(d.d_dy * size));
-    return std::isnan(rho) ? 0.0f : std::log2(rho);
+    const float along_x = glm::length(d.d_dx * size), along_y = glm::length(d.d_dy * size);
+    // A NaN derivative (a degenerate triangle's) counts as no footprint along that axis.
+    const float rho = std::max(std::isnan(along_x) ? 0.0f : along_x, std::isnan(along_y) ? 0.0f : along_y);
+    return std::log2(rho);
 }
 
 glm::vec4 sample(const Texture& texture, glm::vec2 uv, const UvDerivatives& derivatives,
