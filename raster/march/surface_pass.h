@@ -13,7 +13,6 @@
 // ray, so tiles can run in parallel in any order with identical output.
 #pragma once
 #include <algorithm>
-#include <stdexcept>
 #include <vector>
 
 #include "raster/march/march.h"
