@@ -1,6 +1,6 @@
 // Shading benchmarks: cost per shaded pixel for each model (SIMD kernel, one thread, pixels
 // of a 1080p visibility buffer), the scalar reference kernel for the SIMD speed-up, texture
-// sampling throughput per filter, and whole 1080p Phong frames of a 1M-triangle scene through
+// sampling throughput per filter (scalar and gathering SIMD), and whole 1080p Phong frames of a 1M-triangle scene through
 // the tile rasterizer + shading (the comparison with llvmpipe running a Phong GLSL
 // shader; see BENCHMARKS.md).
 //
@@ -18,6 +18,7 @@
 #include "raster/shade/frame_shading.h"
 #include "raster/shade/scene_renderer.h"
 #include "raster/texture/sampler.h"
+#include "raster/texture/sampler_simd.h"
 
 namespace {
 
@@ -143,6 +144,42 @@ void BM_TextureSample(benchmark::State& state) {
                                                      benchmark::Counter::kIsRate);
 }
 BENCHMARK(BM_TextureSample)->DenseRange(0, 3)->Unit(benchmark::kMicrosecond);
+
+// The same queries kLanes at a time through the gathering sampler (sampler_simd.h).
+void BM_TextureSampleSimd(benchmark::State& state) {
+    const auto filter = TextureFilter(state.range(0));
+    static const Texture texture = checker(1024);
+    constexpr int L = simd::kLanes;
+    std::mt19937 rng(3);
+    std::uniform_real_distribution<float> uv(-2.0f, 2.0f), scale(0.1f, 8.0f);
+    struct alignas(64) Block {
+        float u[L], v[L], d[L];
+    };
+    std::vector<Block> blocks((1 << 16) / L);
+    for (Block& b : blocks)
+        for (int i = 0; i < L; ++i) {
+            b.u[i] = uv(rng);
+            b.v[i] = uv(rng);
+            b.d[i] = scale(rng) / 1024.0f;
+        }
+    using shade::vfloat;
+    vfloat sum(0.0f);
+    for (auto _ : state) {
+        for (const Block& b : blocks) {
+            const vfloat d = vfloat::load(b.d);
+            const shade::TexelLanes t = shade::sample_lanes(texture, vfloat::load(b.u), vfloat::load(b.v), d,
+                                                            vfloat(0.0f), vfloat(0.0f), d * vfloat(0.7f), filter,
+                                                            TextureWrap::repeat);
+            sum = sum + t.r;
+        }
+        benchmark::DoNotOptimize(sum);
+    }
+    static const char* names[] = {"nearest", "bilinear", "mipmap", "trilinear"};
+    state.SetLabel(names[state.range(0)]);
+    state.counters["samples/s"] = benchmark::Counter(double(blocks.size() * L) * double(state.iterations()),
+                                                     benchmark::Counter::kIsRate);
+}
+BENCHMARK(BM_TextureSampleSimd)->DenseRange(0, 3)->Unit(benchmark::kMicrosecond);
 
 // A whole 1080p frame: bake + raster + Phong shading of a 1M-triangle sphere (1000 x 500 quads).
 void BM_PhongFrame1080p(benchmark::State& state) {

@@ -3,8 +3,9 @@
 // writes it as an image.
 //
 //   tessera march --scene metaballs --kernel blinn --balls 6 --time 2.5 -o blobs.png
-//   tessera march --scene terrain --strategy geometric --fog-density 0.02 --fog-falloff 1.5 \
+//   tessera march --scene terrain --strategy geometric --fog-density 0.01 --fog-falloff 0.3 \
 //                 --fog-colour 0.7,0.75,0.8 --size 1920x1080 -o terrain.exr
+//   tessera march --scene metaballs --reflectivity 0.6 --cube-map 'media/sky_{face}.png' -o m.png
 #include <chrono>
 #include <cstdio>
 #include <sstream>
@@ -41,6 +42,7 @@ struct MarchOptions {
     std::string scene = "metaballs", kernel = "wyvill", strategy = "uniform", normals = "analytic";
     std::string size = "960x540", output = "march.png";
     std::string fog_density = "0", fog_colour = "0.6,0.65,0.7";
+    std::string cube_map;
     int balls = 5, steps = 128, threads = 0;
     float time = 0.0f, max_step = 0.0f, tolerance = 1e-3f, normal_step = 0.05f;
     float fog_falloff = 0.0f, fog_base = 0.0f, reflectivity = 0.0f;
@@ -66,6 +68,9 @@ Run define_march(CLI::App& root) {
     cmd->add_option("--fog-colour", o->fog_colour, "fog colour (0: black fog)")->capture_default_str();
     cmd->add_option("--fog-falloff", o->fog_falloff, "height falloff b of exp(-b (y - base)); 0: constant fog")->capture_default_str();
     cmd->add_option("--fog-base", o->fog_base, "height where the fog has its nominal density")->capture_default_str();
+    cmd->add_option("--cube-map", o->cube_map,
+                    "six images as the background, '{face}' standing for px nx py ny pz nz "
+                    "(e.g. 'sky/{face}.png'; default: procedural sky)");
     cmd->add_option("--size", o->size, "WIDTHxHEIGHT")->capture_default_str();
     cmd->add_option("-o,--output", o->output, "image file (.png, .exr, .tif)")->capture_default_str();
     add_threads_option(*cmd, o->threads);
@@ -100,6 +105,11 @@ Run define_march(CLI::App& root) {
         s.fog.base_height = o->fog_base;
         if (!image_format_supported(o->output))
             throw UsageError("--output: no image writer for '" + o->output + "'");
+
+        if (!o->cube_map.empty()) {
+            s.background.kind = Background::Kind::cube_map;
+            s.background.cube = load_cube_map(o->cube_map);
+        }
 
         const auto threads = limit_threads(o->threads);
         const auto start = std::chrono::steady_clock::now();

@@ -16,6 +16,18 @@ done
     --fog-density 0.1,0.2,0.3 --fog-colour 0 --fog-falloff 0.5 --size 32x32 -o "$dir/b.exr" \
     >/dev/null || fail "blinn/exr exited $?"
 
+# A cube-map background (and mirror reflections of it) from six rendered faces.
+mkdir -p "$dir/cube"
+for face in px nx py ny pz nz; do
+    "$tessera" march --size 8x8 -o "$dir/cube/sky_$face.png" >/dev/null || fail "face $face"
+done
+"$tessera" march --reflectivity 0.7 --cube-map "$dir/cube/sky_{face}.png" --size 32x32 \
+    -o "$dir/cube.png" >/dev/null || fail "cube map exited $?"
+rm "$dir/cube/sky_nz.png"
+err=$("$tessera" march --cube-map "$dir/cube/sky_{face}.png" --size 8x8 -o "$dir/c2.png" 2>&1 >/dev/null); code=$?
+[ $code -eq 1 ] || fail "missing cube face exited $code, expected 1"
+grep -q "nz" <<<"$err" || fail "missing-face error should name the face: $err"
+
 expect_usage() {
     local err code
     err=$("$tessera" march --size 16x16 -o "$dir/bad.png" "$@" 2>&1 >/dev/null); code=$?
@@ -32,6 +44,7 @@ expect_usage --scene bogus
 expect_usage --kernel gauss
 expect_usage --strategy random
 expect_usage --normal-step 0 --normals differences
+expect_usage --cube-map "$dir/cube/no_pattern.png"
 
 "$tessera" march --size 16x16 -o "$dir/missing/dir/x.png" >/dev/null 2>&1; code=$?
 [ $code -eq 1 ] || fail "unwritable output exited $code, expected 1"

@@ -73,7 +73,7 @@ TEST(MarchMetaball, FieldGradientMatchesFiniteDifferencesForEveryKernel) {
                                (field.value(p + glm::vec3(0, h, 0)) - field.value(p - glm::vec3(0, h, 0))) / (2 * h),
                                (field.value(p + glm::vec3(0, 0, h)) - field.value(p - glm::vec3(0, 0, h))) / (2 * h));
             const glm::vec3 g = field.gradient(p);
-            EXPECT_LE(glm::length(g - fd), 2e-3f * std::max(1.0f, glm::length(g)))
+            EXPECT_LE(glm::length(g - fd), 1e-3f * std::max(1.0f, glm::length(g)))
                 << "kernel " << int(kernel) << " at " << p.x << "," << p.y << "," << p.z;
         }
     }

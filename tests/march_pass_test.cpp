@@ -174,6 +174,18 @@ TEST(MarchPass, BackgroundFillsEmptyPixelsAndFogUsesTheDepthDistance) {
         }
 }
 
+TEST(MarchPass, ASurfaceCutByTheNearPlaneShowsAtTheNearPlane) {
+    Camera camera = test_camera();
+    camera.eye = {0.0f, 0.0f, 1.2f};  // the near plane (0.5 ahead) lies inside the sphere
+    const RayGenerator rays(camera, W, H);
+    const Background env = sky_background();
+    Frame frame;
+    sphere_pass(rays, env).run(frame.all());
+    const size_t centre = size_t(H / 2) * W + W / 2;
+    EXPECT_EQ(frame.depth[centre], 0.0f);
+    EXPECT_EQ(frame.colour[centre].a, 1.0f);
+}
+
 TEST(MarchPass, BadPassParametersAreRefused) {
     const RayGenerator rays(test_camera(), W, H);
     const Background env = sky_background();

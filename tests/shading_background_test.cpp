@@ -44,7 +44,8 @@ TEST(ShadingBackground, CubeMapFaceOrientationFollowsOpenGL) {
 }
 
 TEST(ShadingBackground, MissingCubeFacesAreClearErrors) {
-    EXPECT_THROW(load_cube_map("/nonexistent", "sky_", ".png"), Error);
+    EXPECT_THROW(load_cube_map("/nonexistent/sky_{face}.png"), Error);
+    EXPECT_THROW(load_cube_map("/nonexistent/sky.png"), std::invalid_argument);
 }
 
 TEST(ShadingBackground, SkyIsBrighterUpThanDownAndShowsTheSun) {

@@ -2,9 +2,11 @@
 #include <gtest/gtest.h>
 
 #include <filesystem>
+#include <random>
 
 #include "raster/error.h"
 #include "raster/texture/sampler.h"
+#include "raster/texture/sampler_simd.h"
 #include "raster/texture/texture.h"
 
 using namespace tessera;
@@ -94,4 +96,51 @@ TEST(ShadingTexture, LoadingFlipsRowsDecodesSrgbAndReportsMissingFiles) {
     const Texture srgb = Texture::from_image(img, TexelEncoding::srgb);
     EXPECT_NEAR(srgb.level(0).at(0, 0).r, 0.21404f, 1e-4f);
     EXPECT_THROW(load_texture("/nonexistent/texture.png", TexelEncoding::srgb), Error);
+}
+
+TEST(ShadingTexture, SimdSamplerMatchesTheScalarSampler) {
+    // A non-power-of-two texture with distinct texels; random coordinates (some far outside
+    // [0, 1], some not finite) and footprints spanning every level, each lane on its own level.
+    std::vector<glm::vec4> texels(37 * 23);
+    for (size_t i = 0; i < texels.size(); ++i)
+        texels[i] = glm::vec4(float(i % 37) / 37.0f, float(i / 37) / 23.0f, float((i * 7) % 11) / 11.0f, 1.0f - float(i % 5) / 10.0f);
+    const Texture t(37, 23, texels);
+    std::mt19937 rng(9);
+    std::uniform_real_distribution<float> coordinate(-3.0f, 3.0f), exponent(-8.0f, 4.0f);
+    constexpr int L = simd::kLanes;
+    float worst = 0.0f;
+    for (TextureFilter filter : {TextureFilter::nearest, TextureFilter::bilinear, TextureFilter::mipmap, TextureFilter::trilinear})
+        for (TextureWrap wrap : {TextureWrap::repeat, TextureWrap::clamp})
+            for (int round = 0; round < 200; ++round) {
+                alignas(64) float u[L], v[L], d[4][L], out[4][L];
+                for (int i = 0; i < L; ++i) {
+                    u[i] = coordinate(rng);
+                    v[i] = coordinate(rng);
+                    for (int k = 0; k < 4; ++k) d[k][i] = std::exp2(exponent(rng)) * (k == 1 || k == 2 ? 0.3f : 1.0f);
+                }
+                if (round == 0) {
+                    u[0] = NAN;
+                    v[0] = INFINITY;
+                    d[0][0] = NAN;
+                }
+                using shade::vfloat;
+                const shade::TexelLanes s = shade::sample_lanes(t, vfloat::load(u), vfloat::load(v), vfloat::load(d[0]),
+                                                                vfloat::load(d[1]), vfloat::load(d[2]), vfloat::load(d[3]),
+                                                                filter, wrap);
+                s.r.store(out[0]);
+                s.g.store(out[1]);
+                s.b.store(out[2]);
+                s.a.store(out[3]);
+                for (int i = 0; i < L; ++i) {
+                    const glm::vec4 ref = sample(t, {u[i], v[i]}, {{d[0][i], d[1][i]}, {d[2][i], d[3][i]}}, filter, wrap);
+                    for (int c = 0; c < 4; ++c) {
+                        if (std::abs(out[c][i] - ref[c]) > 2e-5f && worst <= 2e-5f)
+                            ADD_FAILURE() << "filter " << int(filter) << " wrap " << int(wrap) << " uv " << u[i] << "," << v[i]
+                                          << " d " << d[0][i] << " " << d[1][i] << " " << d[2][i] << " " << d[3][i]
+                                          << " channel " << c << ": " << out[c][i] << " vs " << ref[c];
+                        worst = std::max(worst, std::abs(out[c][i] - ref[c]));
+                    }
+                }
+            }
+    EXPECT_LT(worst, 2e-5f);
 }

@@ -13,10 +13,11 @@ namespace {
 
 bool finite(glm::vec3 v) { return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z); }
 
-// One ball's kernel sample at p (shared by value and gradient so both read the same K).
+// One ball's kernel sample at p (shared by value and gradient so both read the same K); the
+// sum of squares in the order values() uses.
 template <class Kernel>
-KernelSample sample(const Kernel& kernel, glm::vec3 q, float inv_r2) {
-    return kernel.at(glm::dot(q, q) * inv_r2);
+KernelSample<float> sample(const Kernel& kernel, glm::vec3 q, float inv_r2) {
+    return kernel.at((q.x * q.x + q.y * q.y + q.z * q.z) * inv_r2);
 }
 
 }  // namespace
@@ -51,7 +52,7 @@ float MetaballField::value(glm::vec3 p) const {
     float sum = 0.0f;
     for (size_t i = 0; i < cx_.size(); ++i) {
         const glm::vec3 q = p - glm::vec3(cx_[i], cy_[i], cz_[i]);
-        KernelSample k;
+        KernelSample<float> k;
         switch (style_.kernel) {
         case MetaballKernel::wyvill: k = sample(WyvillKernel{}, q, inv_r2_[i]); break;
         case MetaballKernel::perlin: k = sample(PerlinKernel{}, q, inv_r2_[i]); break;
@@ -66,7 +67,7 @@ glm::vec3 MetaballField::gradient(glm::vec3 p) const {
     glm::vec3 g(0.0f);
     for (size_t i = 0; i < cx_.size(); ++i) {
         const glm::vec3 q = p - glm::vec3(cx_[i], cy_[i], cz_[i]);
-        KernelSample k;
+        KernelSample<float> k;
         switch (style_.kernel) {
         case MetaballKernel::wyvill: k = sample(WyvillKernel{}, q, inv_r2_[i]); break;
         case MetaballKernel::perlin: k = sample(PerlinKernel{}, q, inv_r2_[i]); break;
@@ -80,15 +81,17 @@ glm::vec3 MetaballField::gradient(glm::vec3 p) const {
 template <class Kernel>
 void MetaballField::accumulate(const Kernel& kernel, const float* x, const float* y,
                                const float* z, float* sum) const {
-    // Balls outermost, lanes innermost: the lane loop is branch-free arithmetic on
-    // kMarchLanes floats and vectorises; the summation order per lane equals value()'s.
+    // One vfloat of points against one ball at a time, through the kernel's vfloat
+    // instantiation: the same operations in the same order as value() per lane.
+    using simd::vfloat;
+    const vfloat px = vfloat::load(x), py = vfloat::load(y), pz = vfloat::load(z);
+    vfloat acc = vfloat::load(sum);
     for (size_t b = 0; b < cx_.size(); ++b) {
-        const float cx = cx_[b], cy = cy_[b], cz = cz_[b], inv_r2 = inv_r2_[b], w = weight_[b];
-        for (int i = 0; i < kMarchLanes; ++i) {
-            const float qx = x[i] - cx, qy = y[i] - cy, qz = z[i] - cz;
-            sum[i] += w * kernel.at((qx * qx + qy * qy + qz * qz) * inv_r2).value;
-        }
+        const vfloat qx = px - vfloat(cx_[b]), qy = py - vfloat(cy_[b]), qz = pz - vfloat(cz_[b]);
+        const vfloat s = (qx * qx + qy * qy + qz * qz) * vfloat(inv_r2_[b]);
+        acc = acc + vfloat(weight_[b]) * kernel.at(s).value;
     }
+    acc.store(sum);
 }
 
 void MetaballField::values(const float* x, const float* y, const float* z, float* out) const {

@@ -12,6 +12,7 @@ namespace tessera::march {
 RayGenerator::RayGenerator(const Camera& camera, int width, int height)
     : eye_(camera.eye),
       forward_(glm::normalize(camera.lookat - camera.eye)),
+      near_(camera.near),
       far_(camera.far),
       width_(width),
       height_(height) {

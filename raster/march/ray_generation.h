@@ -35,7 +35,9 @@ public:
     // depth >= 1, the cleared (empty) value: the fog treats it as the background at infinity.
     float distance_from_depth(int x, int y, float depth) const;
 
-    // Distance along the unit direction `d` to the far plane: no hit beyond it is visible.
+    // Distances along the unit direction `d` to the near and far planes: only hits between
+    // them are visible (the rasterizer clips triangles to the same planes).
+    float near_distance(glm::vec3 d) const { return near_ / glm::dot(d, forward_); }
     float far_distance(glm::vec3 d) const { return far_ / glm::dot(d, forward_); }
 
     const glm::vec3& eye() const { return eye_; }
@@ -50,6 +52,7 @@ private:
     glm::mat4 inverse_view_projection_;
     glm::vec3 eye_;
     glm::vec3 forward_;  // unit view direction
+    float near_;
     float far_;
     int width_;
     int height_;

@@ -13,7 +13,6 @@
 // ray, so tiles can run in parallel in any order with identical output.
 #pragma once
 #include <algorithm>
-#include <stdexcept>
 #include <vector>
 
 #include "raster/march/march.h"
@@ -63,20 +62,23 @@ private:
         const auto& field = surface_.bind(packet, kMiss, segments, scratch);
         for (int i = 0; i < kMarchLanes; ++i) {
             const int x = x0 + (i < count ? i : 0);
-            // Nothing behind the stored surface can show; a small margin leaves exact ties to
-            // the depth comparison below.
+            // The march starts at the near plane, as the rasterizer clips there: a surface cut
+            // by it shows what lies behind the cut. Nothing behind the stored surface can show;
+            // a small margin leaves exact ties to the depth comparison below.
+            const glm::vec3 d = packet.direction(i);
             const float stored = rays_.distance_from_depth(x, y, target.depth_at(x, y));
-            const float limit = std::min(stored * 1.0001f, rays_.far_distance(packet.direction(i)));
-            segments.t1[i] = std::min(segments.t1[i], limit);
+            segments.t0[i] = std::max(segments.t0[i], rays_.near_distance(d));
+            segments.t1[i] = std::min(segments.t1[i], std::min(stored * 1.0001f, rays_.far_distance(d)));
         }
         alignas(64) float t_hit[kMarchLanes];
         march_packet(field, packet, segments, settings_, t_hit);
         for (int i = 0; i < count; ++i) {
             if (t_hit[i] == kMiss) continue;
             const glm::vec3 p = packet.at(i, t_hit[i]);
-            const float depth = rays_.window_depth(p);
+            // At the near plane the depth rounds to either side of 0.
+            const float depth = std::max(rays_.window_depth(p), 0.0f);
             float& stored = target.depth_at(x0 + i, y);
-            if (!(depth < stored) || !(depth >= 0.0f)) continue;  // behind, or before the near plane
+            if (!(depth < stored)) continue;  // behind what is already there
             stored = depth;
             if (target.triangle)
                 target.triangle[size_t(y - target.y0) * target.depth_stride + size_t(x0 + i - target.x0)] =

@@ -33,17 +33,27 @@ std::string lower_extension(const std::filesystem::path& path) {
 std::vector<uint8_t> encode_srgb8(const Frame& frame) { return encode<uint8_t>(frame, 255.0f); }
 std::vector<uint16_t> encode_srgb16(const Frame& frame) { return encode<uint16_t>(frame, 65535.0f); }
 
-void write_frame(const std::filesystem::path& path, const Frame& frame) {
+OwnedImage encode_frame(const std::filesystem::path& path, const Frame& frame) {
     const std::string ext = lower_extension(path);
+    OwnedImage image{frame.width, frame.height, 4, PixelType::u8, {}};
+    const auto keep = [&image](const auto& values) {
+        const auto* bytes = reinterpret_cast<const uint8_t*>(values.data());
+        image.bytes.assign(bytes, bytes + values.size() * sizeof(values[0]));
+    };
     if (ext == ".exr") {
-        write_image(path, {frame.width, frame.height, 4, PixelType::f32, frame.pixels.data()});
+        image.type = PixelType::f32;
+        keep(frame.pixels);
     } else if (ext == ".tif" || ext == ".tiff") {
-        const std::vector<uint16_t> pixels = encode_srgb16(frame);
-        write_image(path, {frame.width, frame.height, 4, PixelType::u16, pixels.data()});
+        image.type = PixelType::u16;
+        keep(encode_srgb16(frame));
     } else {
-        const std::vector<uint8_t> pixels = encode_srgb8(frame);
-        write_image(path, {frame.width, frame.height, 4, PixelType::u8, pixels.data()});
+        image.bytes = encode_srgb8(frame);
     }
+    return image;
+}
+
+void write_frame(const std::filesystem::path& path, const Frame& frame) {
+    write_image(path, encode_frame(path, frame).view());
 }
 
 }  // namespace tessera

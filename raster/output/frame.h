@@ -14,6 +14,8 @@
 #include <filesystem>
 #include <vector>
 
+#include "raster/output/frame_writer.h"
+
 namespace tessera {
 
 struct Frame {
@@ -33,7 +35,12 @@ struct Frame {
 std::vector<uint8_t> encode_srgb8(const Frame& frame);
 std::vector<uint16_t> encode_srgb16(const Frame& frame);
 
-// Throws tessera::Error (unwritable path, unknown extension) naming the file.
+// The frame encoded as `path`'s extension asks (see above), ready for write_image or for the
+// background FrameWriter (frame_writer.h).
+OwnedImage encode_frame(const std::filesystem::path& path, const Frame& frame);
+
+// encode_frame + write_image. Throws tessera::Error (unwritable path, unknown extension)
+// naming the file.
 void write_frame(const std::filesystem::path& path, const Frame& frame);
 
 }  // namespace tessera

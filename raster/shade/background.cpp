@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <stdexcept>
 
 #include "raster/error.h"
 #include "raster/texture/sampler.h"
@@ -50,13 +51,17 @@ glm::vec3 cube_radiance(const CubeMap& cube, glm::vec3 d) {
 
 }  // namespace
 
-CubeMap load_cube_map(const std::filesystem::path& directory, const std::string& prefix,
-                      const std::string& extension) {
+CubeMap load_cube_map(const std::string& pattern) {
     static const char* const kNames[6] = {"px", "nx", "py", "ny", "pz", "nz"};
+    const size_t at = pattern.find("{face}");
+    if (at == std::string::npos)
+        throw std::invalid_argument("cube map pattern '" + pattern + "' needs a {face} placeholder");
     CubeMap cube;
-    for (int i = 0; i < 6; ++i)
-        cube.faces[size_t(i)] = std::make_shared<const Texture>(
-            load_texture(directory / (prefix + kNames[i] + extension), TexelEncoding::srgb));
+    for (int i = 0; i < 6; ++i) {
+        std::string path = pattern;
+        path.replace(at, 6, kNames[i]);
+        cube.faces[size_t(i)] = std::make_shared<const Texture>(load_texture(path, TexelEncoding::srgb));
+    }
     return cube;
 }
 

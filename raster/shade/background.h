@@ -6,7 +6,7 @@
 #include <glm/glm.hpp>
 
 #include <array>
-#include <filesystem>
+#include <string>
 #include <memory>
 
 #include "raster/texture/texture.h"
@@ -30,10 +30,10 @@ struct CubeMap {
     std::array<std::shared_ptr<const Texture>, 6> faces;
 };
 
-// Reads six images named <prefix>{px,nx,py,ny,pz,nz}<extension> (e.g. "sky_px.png" with prefix
-// "sky_"). Throws tessera::Error naming a missing or unreadable face.
-CubeMap load_cube_map(const std::filesystem::path& directory, const std::string& prefix,
-                      const std::string& extension);
+// Reads six colour images named by `pattern` with "{face}" replaced by px, nx, py, ny, pz, nz
+// ("sky/{face}.png" -> sky/px.png ...). Throws std::invalid_argument for a pattern without
+// "{face}" and tessera::Error naming a missing or unreadable face.
+CubeMap load_cube_map(const std::string& pattern);
 
 struct Background {
     enum class Kind { colour, sky, cube_map } kind = Kind::colour;

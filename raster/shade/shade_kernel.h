@@ -12,6 +12,7 @@
 #include "raster/shade/shade_math.h"
 #include "raster/shade/tangent_frame.h"
 #include "raster/texture/sampler.h"
+#include "raster/texture/sampler_simd.h"
 
 namespace tessera::shade {
 
@@ -27,8 +28,6 @@ struct alignas(64) Lanes {
     float uv[3][2][kLanes];           // corner, texture coordinates
     float col[3][3][kLanes];          // corner, Gouraud colour
     float out[4][kLanes];             // result: linear RGBA
-    float tex_u[kLanes], tex_v[kLanes], du_dx[kLanes], dv_dx[kLanes], du_dy[kLanes], dv_dy[kLanes];
-    float texel[4][kLanes];
 };
 
 // What the kernel reads besides the lanes: uniform over the batch.
@@ -56,14 +55,20 @@ void lane_store(float* a, int lane, F v) {
     else v.store(a);
 }
 
-// Samples `texture` at the uv and derivatives stored in d.tex_u... for lanes [lane, lane +
-// lane_width<F>()), one lane at a time (texel addresses differ per lane: a gather).
 template <class F>
-void sample_lanes(const Texture& texture, const Material& m, Lanes& d, int lane) {
-    for (int i = lane; i < lane + lane_width<F>(); ++i) {
-        const UvDerivatives deriv{{d.du_dx[i], d.dv_dx[i]}, {d.du_dy[i], d.dv_dy[i]}};
-        const glm::vec4 t = sample(texture, {d.tex_u[i], d.tex_v[i]}, deriv, m.filter, m.wrap);
-        for (int c = 0; c < 4; ++c) d.texel[c][i] = t[c];
+struct Texel {
+    F r, g, b, a;
+};
+
+// The reference path samples one pixel with sample(); the SIMD path gathers all lanes at once.
+template <class F>
+Texel<F> sample_texture(const Texture& texture, const Material& m, F u, F v, F du_dx, F dv_dx, F du_dy, F dv_dy) {
+    if constexpr (std::is_same_v<F, float>) {
+        const glm::vec4 t = sample(texture, {u, v}, {{du_dx, dv_dx}, {du_dy, dv_dy}}, m.filter, m.wrap);
+        return {t.r, t.g, t.b, t.a};
+    } else {
+        const TexelLanes t = sample_lanes(texture, u, v, du_dx, dv_dx, du_dy, dv_dy, m.filter, m.wrap);
+        return {t.r, t.g, t.b, t.a};
     }
 }
 
@@ -120,25 +125,18 @@ void shade_lanes(const KernelContext& ctx, Lanes& d, int lane) {
             udy = fma(uk, dby, udy);
             vdy = fma(vk, dby, vdy);
         }
-        lane_store(d.tex_u, lane, u);
-        lane_store(d.tex_v, lane, v);
-        lane_store(d.du_dx, lane, udx);
-        lane_store(d.dv_dx, lane, vdx);
-        lane_store(d.du_dy, lane, udy);
-        lane_store(d.dv_dy, lane, vdy);
         if (ctx.diffuse) {
-            sample_lanes<F>(*ctx.diffuse, m, d, lane);
-            kd = kd * V{ld(d.texel[0]), ld(d.texel[1]), ld(d.texel[2])};
-            alpha = alpha * ld(d.texel[3]);
+            const Texel<F> t = sample_texture<F>(*ctx.diffuse, m, u, v, udx, vdx, udy, vdy);
+            kd = kd * V{t.r, t.g, t.b};
+            alpha = alpha * t.a;
         }
         if (ctx.normal) {
             // seeds/004: the map stores tangent-space normals as RGB = n * 0.5 + 0.5.
-            sample_lanes<F>(*ctx.normal, m, d, lane);
-            const V mapped{fma(ld(d.texel[0]), F(2.0f), F(-1.0f)), fma(ld(d.texel[1]), F(2.0f), F(-1.0f)),
-                           fma(ld(d.texel[2]), F(2.0f), F(-1.0f))};
+            const Texel<F> t = sample_texture<F>(*ctx.normal, m, u, v, udx, vdx, udy, vdy);
+            const V mapped{fma(t.r, F(2.0f), F(-1.0f)), fma(t.g, F(2.0f), F(-1.0f)), fma(t.b, F(2.0f), F(-1.0f))};
             const F s[3] = {ld(d.uv[0][0]), ld(d.uv[1][0]), ld(d.uv[2][0])};
-            const F t[3] = {ld(d.uv[0][1]), ld(d.uv[1][1]), ld(d.uv[2][1])};
-            const TangentFrame<F> frame = tangent_frame<F>(p, s, t, normal);
+            const F t3[3] = {ld(d.uv[0][1]), ld(d.uv[1][1]), ld(d.uv[2][1])};
+            const TangentFrame<F> frame = tangent_frame<F>(p, s, t3, normal);
             // Back faces see the map from behind: its tangent axes flip with the normal.
             const V perturbed = madd(frame.s, mapped.x * side, madd(frame.t, mapped.y * side, normal * mapped.z));
             normal = normalize_or(perturbed, normal);

@@ -43,6 +43,9 @@ inline vfloat exponent_of(vfloat x, vfloat& mantissa) {
     return _mm512_maskz_getexp_ps(0xFFFF, x.v);
 }
 inline vfloat exp2_int(vfloat n) { return _mm512_maskz_scalef_ps(0xFFFF, _mm512_set1_ps(1.0f), n.v); }
+inline simd::vint gather_int(const int32_t* base, simd::vint index) {
+    return _mm512_i32gather_epi32(index.v, base, 4);
+}
 inline vfloat floor_of(vfloat x) { return _mm512_maskz_roundscale_ps(0xFFFF, x.v, _MM_FROUND_TO_NEG_INF); }
 #elif defined(__AVX2__)
 inline vfloat exponent_of(vfloat x, vfloat& mantissa) {
@@ -56,6 +59,9 @@ inline vfloat exp2_int(vfloat n) {
     return _mm256_castsi256_ps(_mm256_slli_epi32(e, 23));
 }
 inline vfloat floor_of(vfloat x) { return _mm256_floor_ps(x.v); }
+inline simd::vint gather_int(const int32_t* base, simd::vint index) {
+    return _mm256_i32gather_epi32(base, index.v, 4);
+}
 #else
 inline vfloat exponent_of(vfloat x, vfloat& mantissa) {
     float m;
@@ -65,6 +71,7 @@ inline vfloat exponent_of(vfloat x, vfloat& mantissa) {
 }
 inline vfloat exp2_int(vfloat n) { return exp2_int(n.v); }
 inline vfloat floor_of(vfloat x) { return std::floor(x.v); }
+inline simd::vint gather_int(const int32_t* base, simd::vint index) { return base[index.v]; }
 #endif
 
 template <class F>

@@ -46,8 +46,10 @@ glm::vec4 bilinear(const MipLevel& level, glm::vec2 uv, TextureWrap wrap) {
 
 float mip_lambda(const Texture& texture, const UvDerivatives& d) {
     const glm::vec2 size(float(texture.width()), float(texture.height()));
-    const float rho = std::max(glm::length(d.d_dx * size), glm::length(d.d_dy * size));
-    return std::isnan(rho) ? 0.0f : std::log2(rho);
+    const float along_x = glm::length(d.d_dx * size), along_y = glm::length(d.d_dy * size);
+    // A NaN derivative (a degenerate triangle's) counts as no footprint along that axis.
+    const float rho = std::max(std::isnan(along_x) ? 0.0f : along_x, std::isnan(along_y) ? 0.0f : along_y);
+    return std::log2(rho);
 }
 
 glm::vec4 sample(const Texture& texture, glm::vec2 uv, const UvDerivatives& derivatives,

@@ -20,8 +20,9 @@ struct UvDerivatives {
     glm::vec2 d_dy{0.0f};
 };
 
-// lambda of the OpenGL specification (may be negative: magnification; +inf for infinite
-// derivatives, which then select the coarsest level).
+// lambda of the OpenGL specification (may be negative: magnification; -inf for a zero
+// footprint; +inf for infinite derivatives, which then select the coarsest level). A NaN
+// derivative counts as zero along its axis.
 float mip_lambda(const Texture& texture, const UvDerivatives& derivatives);
 
 // Filtered texel at `uv` (texel centres at (i + 0.5) / width). Non-finite uv gives the

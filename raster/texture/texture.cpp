@@ -36,22 +36,18 @@ std::vector<std::vector<Tap>> box_taps(int from, int to) {
     return taps;
 }
 
-MipLevel half(const MipLevel& src) {
-    MipLevel dst;
-    dst.width = std::max(1, src.width / 2);
-    dst.height = std::max(1, src.height / 2);
-    const auto tx = box_taps(src.width, dst.width);
-    const auto ty = box_taps(src.height, dst.height);
-    dst.texels.resize(size_t(dst.width) * size_t(dst.height));
-    tbb::parallel_for(0, dst.height, [&](int y) {
-        for (int x = 0; x < dst.width; ++x) {
+// The next level down from `src` into `dst` (already sized).
+void half(const MipLevel& src, int width, int height, glm::vec4* dst) {
+    const auto tx = box_taps(src.width, width);
+    const auto ty = box_taps(src.height, height);
+    tbb::parallel_for(0, height, [&](int y) {
+        for (int x = 0; x < width; ++x) {
             glm::vec4 sum(0.0f);
             for (const Tap& a : ty[size_t(y)])
                 for (const Tap& b : tx[size_t(x)]) sum += a.weight * b.weight * src.at(b.source, a.source);
-            dst.texels[size_t(y) * size_t(dst.width) + size_t(x)] = sum;
+            dst[size_t(y) * size_t(width) + size_t(x)] = sum;
         }
     });
-    return dst;
 }
 
 }  // namespace
@@ -64,8 +60,28 @@ Texture::Texture(int width, int height, std::vector<glm::vec4> texels) {
         throw std::invalid_argument("texture of " + std::to_string(width) + "x" +
                                     std::to_string(height) + " needs that many texels, got " +
                                     std::to_string(texels.size()));
-    levels_.push_back({width, height, std::move(texels)});
-    while (levels_.back().width > 1 || levels_.back().height > 1) levels_.push_back(half(levels_.back()));
+    // Level sizes first, so the whole chain is one allocation.
+    size_t total = 0;
+    for (int w = width, h = height;; w = std::max(1, w / 2), h = std::max(1, h / 2)) {
+        widths_.push_back(w);
+        heights_.push_back(h);
+        offsets_.push_back(int32_t(std::min<size_t>(total, size_t(1) << 30)));
+        total += size_t(w) * size_t(h);
+        if (w == 1 && h == 1) break;
+    }
+    if (total > (size_t(1) << 28))
+        throw std::invalid_argument("texture of " + std::to_string(width) + "x" + std::to_string(height) +
+                                    " is too large (the mip chain may hold at most 2^28 texels)");
+    texels_ = std::move(texels);
+    texels_.resize(total);
+    for (size_t k = 1; k < widths_.size(); ++k)
+        half(level(int(k - 1)), widths_[k], heights_[k], texels_.data() + offsets_[k]);
+}
+
+MipLevel Texture::level(int index) const {
+    const size_t k = size_t(index);
+    return {widths_[k], heights_[k],
+            std::span<const glm::vec4>(texels_.data() + offsets_[k], size_t(widths_[k]) * size_t(heights_[k]))};
 }
 
 Texture Texture::from_image(const FloatImage& image, TexelEncoding encoding) {
