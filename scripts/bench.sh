@@ -1,6 +1,7 @@
 #!/usr/bin/env bash
 # Runs every Google Benchmark suite (build/bin/bench_*) and writes one JSON file per suite
-# under bench/results/<UTC date and time>/, next to a machine.txt that says where it ran.
+# under bench/results/<UTC date and time>/, next to a machine.txt that says where, when and with
+# which arguments it ran (scripts/bench-report.py turns the directory into tables and plots).
 # Extra arguments go to every suite, e.g.: scripts/bench.sh --benchmark_filter=Fill
 set -euo pipefail
 root=$(cd "$(dirname "$0")/.." && pwd)
@@ -8,7 +9,7 @@ bin=${TESSERA_BUILD:-$root/build}/bin
 stamp=$(date -u +%Y-%m-%dT%H%M%SZ)
 out=$root/bench/results/$stamp
 mkdir -p "$out"
-"$bin/tessera" info > "$out/machine.txt"
+{ "$bin/tessera" info; echo "date: $(date -u '+%Y-%m-%d %H:%M UTC')"; echo "command: scripts/bench.sh $*"; } > "$out/machine.txt"
 shopt -s nullglob
 suites=("$bin"/bench_*)
 ((${#suites[@]})) || { echo "bench: no suites in $bin (build first: make build)" >&2; exit 1; }

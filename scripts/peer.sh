@@ -1,0 +1,129 @@
+#!/usr/bin/env bash
+# The peer comparison: `tessera raster` and `tessera-llvmpipe` (Mesa llvmpipe via OSMesa) on the
+# same generated workloads, same size, same shading, same thread counts, in the same run.
+#
+#   scripts/peer.sh [--workload NAME]... [--size WxH] [--threads "1 2"] [--repeat K]
+#                   [--memory] [--no-ids]
+#
+# Workloads (generated once by gen-workload.py into build/workloads/, never committed):
+#   spheres-1m (default)  1,048,576-triangle sphere field, --shade phong, --cull back
+#   grid-10px             1,048,576 triangles in 10 px grid quads, back to front, --cull none
+#   fill-10px fill-25px fill-50px fill-100px fill-250px
+#                         MSOC FillrateTest right triangles (counts as in its test), --cull none
+# For each workload and thread count it prints both medians of `--repeat K` frames
+# (frame_ms median) and the ratio llvmpipe / tessera (how many times faster tessera is).
+# Then, unless --no-ids, it renders both with --shade id --out-id and counts differing pixels.
+# --memory: peak resident memory (getrusage ru_maxrss of the process) of one frame at 1080p, 4K
+# and 8K for each renderer, and the same minus a 64x64 frame (what the frame itself costs).
+# Results go to stdout and, as JSON lines, to bench/results/<stamp>/peer.jsonl with machine.txt.
+set -euo pipefail
+root=$(cd "$(dirname "$0")/.." && pwd)
+bin=${TESSERA_BUILD:-$root/build}/bin
+workdir=${TESSERA_WORKLOADS:-${TESSERA_BUILD:-$root/build}/workloads}
+workloads=() size=1920x1080 threads="1 2" repeat=10 memory=0 ids=1
+while (($#)); do
+  case $1 in
+    --workload) workloads+=("$2"); shift 2 ;;
+    --size) size=$2; shift 2 ;;
+    --threads) threads=$2; shift 2 ;;
+    --repeat) repeat=$2; shift 2 ;;
+    --memory) memory=1; shift ;;
+    --no-ids) ids=0; shift ;;
+    -h|--help) sed -n '2,20p' "$0" | sed 's/^# \{0,1\}//'; exit 0 ;;
+    *) echo "peer: unknown argument '$1' (see --help)" >&2; exit 2 ;;
+  esac
+done
+((${#workloads[@]})) || workloads=(spheres-1m)
+
+peer=$bin/tessera-llvmpipe
+[[ -x $peer ]] || { echo "peer: $peer was not built (install libosmesa6-dev and rebuild)" >&2; exit 1; }
+have_tessera=0
+"$bin/tessera" --help 2>/dev/null | grep -q "^ *raster " && have_tessera=1
+((have_tessera)) || echo "peer: 'tessera raster' is not in this build; timing llvmpipe alone"
+
+stamp=$(date -u +%Y-%m-%dT%H%M%SZ)
+out=$root/bench/results/$stamp
+mkdir -p "$out" "$workdir"
+{ "$bin/tessera" info; echo "date: $(date -u '+%Y-%m-%d %H:%M UTC')"; echo "command: scripts/peer.sh $*"; } > "$out/machine.txt"
+jsonl=$out/peer.jsonl
+
+# workload NAME -> sets mesh, camera, shade, cull (generating the files if needed)
+workload() {
+  local name=$1 gen
+  case $name in
+    spheres-1m) gen=(spheres --triangles 1048576); shade=phong; cull=back ;;
+    grid-10px)  gen=(grid --triangles 1048576 --pixels 10 --size "$size"); shade=phong; cull=none ;;
+    fill-10px)  gen=(fillrate --triangles 1048576 --pixels 10 --size "$size"); shade=phong; cull=none ;;
+    fill-25px)  gen=(fillrate --triangles 1048576 --pixels 25 --size "$size"); shade=phong; cull=none ;;
+    fill-50px)  gen=(fillrate --triangles 524288 --pixels 50 --size "$size"); shade=phong; cull=none ;;
+    fill-100px) gen=(fillrate --triangles 262144 --pixels 100 --size "$size"); shade=phong; cull=none ;;
+    fill-250px) gen=(fillrate --triangles 65536 --pixels 250 --size "$size"); shade=phong; cull=none ;;
+    *) echo "peer: unknown workload '$name'" >&2; exit 2 ;;
+  esac
+  local prefix=$workdir/$name
+  [[ $name == spheres-* ]] || prefix=$workdir/$name-$size
+  [[ -s $prefix.obj && -s $prefix.cam ]] || python3 "$root/scripts/gen-workload.py" "${gen[@]}" --out "$prefix" >&2
+  mesh=$prefix.obj camera=$prefix.cam
+}
+
+# median_ms RENDERER ARGS... -> the median of the renderer's `frame_ms median=X ...` line
+median_ms() {
+  "$@" | sed -n 's/^frame_ms median=\([0-9.]*\).*/\1/p'
+}
+
+# peak_kb COMMAND... -> peak resident memory of the command in KiB (Linux ru_maxrss)
+peak_kb() {
+  python3 -c 'import resource, subprocess, sys
+r = subprocess.run(sys.argv[1:], stdout=subprocess.DEVNULL)
+sys.exit(r.returncode) if r.returncode else print(resource.getrusage(resource.RUSAGE_CHILDREN).ru_maxrss)' "$@"
+}
+
+printf '%-12s %-10s %7s %12s %12s %9s\n' workload size threads tessera_ms llvmpipe_ms ratio
+for name in "${workloads[@]}"; do
+  workload "$name"
+  common=(--mesh "$mesh" --camera "$camera" --size "$size" --shade "$shade" --cull "$cull")
+  for t in $threads; do
+    lp=$(median_ms "$peer" "${common[@]}" --threads "$t" --repeat "$repeat")
+    ts=nan ratio=nan
+    if ((have_tessera)); then
+      ts=$(median_ms "$bin/tessera" raster "${common[@]}" --threads "$t" --repeat "$repeat")
+      ratio=$(awk -v a="$lp" -v b="$ts" 'BEGIN { printf "%.2f", a / b }')
+    fi
+    printf '%-12s %-10s %7s %12s %12s %9s\n' "$name" "$size" "$t" "$ts" "$lp" "$ratio"
+    printf '{"kind":"time","workload":"%s","size":"%s","shade":"%s","threads":%s,"repeat":%s,"tessera_ms":%s,"llvmpipe_ms":%s}\n' \
+      "$name" "$size" "$shade" "$t" "$repeat" "${ts/nan/null}" "$lp" >> "$jsonl"
+  done
+  if ((ids && have_tessera)); then
+    idargs=(--mesh "$mesh" --camera "$camera" --size "$size" --shade id --cull "$cull")
+    "$bin/tessera" raster "${idargs[@]}" --out-id "$out/$name.tessera.id"
+    "$peer" "${idargs[@]}" --out-id "$out/$name.llvmpipe.id"
+    line=$(python3 "$root/scripts/compare-ids.py" "$out/$name.tessera.id" "$out/$name.llvmpipe.id")
+    echo "$name: $line (A = tessera, B = llvmpipe)"
+    differ=$(sed -n 's/.* \([0-9]*\) differ.*/\1/p' <<<"$line")
+    printf '{"kind":"ids","workload":"%s","size":"%s","differing_pixels":%s}\n' "$name" "$size" "$differ" >> "$jsonl"
+    rm -f "$out/$name.tessera.id" "$out/$name.llvmpipe.id"
+  fi
+done
+
+if ((memory)); then
+  name=${workloads[0]}
+  echo
+  printf '%-10s %-10s %14s %16s\n' renderer size peak_rss_MiB frame_MiB_vs_64x64
+  renderers=(llvmpipe)
+  ((have_tessera)) && renderers=(tessera llvmpipe)
+  for r in "${renderers[@]}"; do
+    base=
+    for s in 64x64 1920x1080 3840x2160 7680x4320; do
+      size=$s; workload "$name"
+      args=(--mesh "$mesh" --camera "$camera" --size "$s" --shade "$shade" --cull "$cull" --threads 2)
+      if [[ $r == tessera ]]; then kb=$(peak_kb "$bin/tessera" raster "${args[@]}")
+      else kb=$(peak_kb "$peer" "${args[@]}"); fi
+      [[ -n $base ]] || base=$kb
+      awk -v r="$r" -v s="$s" -v kb="$kb" -v base="$base" \
+        'BEGIN { printf "%-10s %-10s %14.1f %16.1f\n", r, s, kb / 1024, (kb - base) / 1024 }'
+      printf '{"kind":"memory","renderer":"%s","workload":"%s","size":"%s","peak_rss_kib":%s,"frame_kib":%s}\n' \
+        "$r" "$name" "$s" "$kb" "$((kb - base))" >> "$jsonl"
+    done
+  done
+fi
+echo "peer: results in $out"
