@@ -3,15 +3,19 @@
 # same generated workloads, same size, same shading, same thread counts, in the same run.
 #
 #   scripts/peer.sh [--workload NAME]... [--size WxH] [--threads "1 2"] [--repeat K]
-#                   [--memory] [--no-ids]
+#                   [--rounds R] [--shade MODE] [--memory] [--no-ids]
 #
 # Workloads (generated once by gen-workload.py into build/workloads/, never committed):
 #   spheres-1m (default)  1,048,576-triangle sphere field, --shade phong, --cull back
-#   grid-10px             1,048,576 triangles in 10 px grid quads, back to front, --cull none
+#   grid-10px             1,048,576 triangles in 10 px grid quads, back to front, --shade id
 #   fill-10px fill-25px fill-50px fill-100px fill-250px
-#                         MSOC FillrateTest right triangles (counts as in its test), --cull none
-# For each workload and thread count it prints both medians of `--repeat K` frames
-# (frame_ms median) and the ratio llvmpipe / tessera (how many times faster tessera is).
+#                         MSOC FillrateTest right triangles (counts as in its test), --shade id
+#   (--shade id is a flat colour per triangle, as in the llvmpipe anchors of
+#   research/rasterizer-anchors.md 1.1; the screen-space workloads use --cull none.)
+#   --shade MODE overrides the workload's shading.
+# For each workload and thread count it runs the two renderers alternately R times (default 3)
+# with `--repeat K` (default 10) and prints each one's median over the rounds of its
+# `frame_ms median`, and the ratio llvmpipe / tessera (how many times faster tessera is).
 # Then, unless --no-ids, it renders both with --shade id --out-id and counts differing pixels.
 # --memory: peak resident memory (getrusage ru_maxrss of the process) of one frame at 1080p, 4K
 # and 8K for each renderer, and the same minus a 64x64 frame (what the frame itself costs).
@@ -20,16 +24,18 @@ set -euo pipefail
 root=$(cd "$(dirname "$0")/.." && pwd)
 bin=${TESSERA_BUILD:-$root/build}/bin
 workdir=${TESSERA_WORKLOADS:-${TESSERA_BUILD:-$root/build}/workloads}
-workloads=() size=1920x1080 threads="1 2" repeat=10 memory=0 ids=1
+workloads=() size=1920x1080 threads="1 2" repeat=10 rounds=3 memory=0 ids=1 shade_override=
 while (($#)); do
   case $1 in
     --workload) workloads+=("$2"); shift 2 ;;
     --size) size=$2; shift 2 ;;
     --threads) threads=$2; shift 2 ;;
     --repeat) repeat=$2; shift 2 ;;
+    --rounds) rounds=$2; shift 2 ;;
+    --shade) shade_override=$2; shift 2 ;;
     --memory) memory=1; shift ;;
     --no-ids) ids=0; shift ;;
-    -h|--help) sed -n '2,20p' "$0" | sed 's/^# \{0,1\}//'; exit 0 ;;
+    -h|--help) sed -n '2,22p' "$0" | sed 's/^# \{0,1\}//'; exit 0 ;;
     *) echo "peer: unknown argument '$1' (see --help)" >&2; exit 2 ;;
   esac
 done
@@ -52,23 +58,29 @@ workload() {
   local name=$1 gen
   case $name in
     spheres-1m) gen=(spheres --triangles 1048576); shade=phong; cull=back ;;
-    grid-10px)  gen=(grid --triangles 1048576 --pixels 10 --size "$size"); shade=phong; cull=none ;;
-    fill-10px)  gen=(fillrate --triangles 1048576 --pixels 10 --size "$size"); shade=phong; cull=none ;;
-    fill-25px)  gen=(fillrate --triangles 1048576 --pixels 25 --size "$size"); shade=phong; cull=none ;;
-    fill-50px)  gen=(fillrate --triangles 524288 --pixels 50 --size "$size"); shade=phong; cull=none ;;
-    fill-100px) gen=(fillrate --triangles 262144 --pixels 100 --size "$size"); shade=phong; cull=none ;;
-    fill-250px) gen=(fillrate --triangles 65536 --pixels 250 --size "$size"); shade=phong; cull=none ;;
+    grid-10px)  gen=(grid --triangles 1048576 --pixels 10 --size "$size"); shade=id; cull=none ;;
+    fill-10px)  gen=(fillrate --triangles 1048576 --pixels 10 --size "$size"); shade=id; cull=none ;;
+    fill-25px)  gen=(fillrate --triangles 1048576 --pixels 25 --size "$size"); shade=id; cull=none ;;
+    fill-50px)  gen=(fillrate --triangles 524288 --pixels 50 --size "$size"); shade=id; cull=none ;;
+    fill-100px) gen=(fillrate --triangles 262144 --pixels 100 --size "$size"); shade=id; cull=none ;;
+    fill-250px) gen=(fillrate --triangles 65536 --pixels 250 --size "$size"); shade=id; cull=none ;;
     *) echo "peer: unknown workload '$name'" >&2; exit 2 ;;
   esac
   local prefix=$workdir/$name
   [[ $name == spheres-* ]] || prefix=$workdir/$name-$size
   [[ -s $prefix.obj && -s $prefix.cam ]] || python3 "$root/scripts/gen-workload.py" "${gen[@]}" --out "$prefix" >&2
   mesh=$prefix.obj camera=$prefix.cam
+  [[ -z $shade_override ]] || shade=$shade_override
 }
 
 # median_ms RENDERER ARGS... -> the median of the renderer's `frame_ms median=X ...` line
 median_ms() {
   "$@" | sed -n 's/^frame_ms median=\([0-9.]*\).*/\1/p'
+}
+
+# median VALUES... -> their median (the mean of the middle two for an even count)
+median() {
+  printf '%s\n' "$@" | sort -g | awk '{ v[NR] = $1 } END { printf "%.3f", NR % 2 ? v[(NR + 1) / 2] : (v[NR / 2] + v[NR / 2 + 1]) / 2 }'
 }
 
 # peak_kb COMMAND... -> peak resident memory of the command in KiB (Linux ru_maxrss)
@@ -83,15 +95,21 @@ for name in "${workloads[@]}"; do
   workload "$name"
   common=(--mesh "$mesh" --camera "$camera" --size "$size" --shade "$shade" --cull "$cull")
   for t in $threads; do
-    lp=$(median_ms "$peer" "${common[@]}" --threads "$t" --repeat "$repeat")
-    ts=nan ratio=nan
+    # Alternate the renderers for --rounds rounds and take the median of each one's medians,
+    # so that load from other processes (drifting over seconds) falls on both alike.
+    lps=() tss=()
+    for ((round = 0; round < rounds; round++)); do
+      lps+=("$(median_ms "$peer" "${common[@]}" --threads "$t" --repeat "$repeat")")
+      ((have_tessera)) && tss+=("$(median_ms "$bin/tessera" raster "${common[@]}" --threads "$t" --repeat "$repeat")")
+    done
+    lp=$(median "${lps[@]}") ts=nan ratio=nan
     if ((have_tessera)); then
-      ts=$(median_ms "$bin/tessera" raster "${common[@]}" --threads "$t" --repeat "$repeat")
+      ts=$(median "${tss[@]}")
       ratio=$(awk -v a="$lp" -v b="$ts" 'BEGIN { printf "%.2f", a / b }')
     fi
     printf '%-12s %-10s %7s %12s %12s %9s\n' "$name" "$size" "$t" "$ts" "$lp" "$ratio"
-    printf '{"kind":"time","workload":"%s","size":"%s","shade":"%s","threads":%s,"repeat":%s,"tessera_ms":%s,"llvmpipe_ms":%s}\n' \
-      "$name" "$size" "$shade" "$t" "$repeat" "${ts/nan/null}" "$lp" >> "$jsonl"
+    printf '{"kind":"time","workload":"%s","size":"%s","shade":"%s","threads":%s,"repeat":%s,"rounds":%s,"tessera_ms":%s,"llvmpipe_ms":%s}\n' \
+      "$name" "$size" "$shade" "$t" "$repeat" "$rounds" "${ts/nan/null}" "$lp" >> "$jsonl"
   done
   if ((ids && have_tessera)); then
     idargs=(--mesh "$mesh" --camera "$camera" --size "$size" --shade id --cull "$cull")
@@ -111,10 +129,10 @@ if ((memory)); then
   printf '%-10s %-10s %14s %16s\n' renderer size peak_rss_MiB frame_MiB_vs_64x64
   renderers=(llvmpipe)
   ((have_tessera)) && renderers=(tessera llvmpipe)
+  workload "$name"  # the same mesh at every size: only the frame's own memory changes
   for r in "${renderers[@]}"; do
     base=
     for s in 64x64 1920x1080 3840x2160 7680x4320; do
-      size=$s; workload "$name"
       args=(--mesh "$mesh" --camera "$camera" --size "$s" --shade "$shade" --cull "$cull" --threads 2)
       if [[ $r == tessera ]]; then kb=$(peak_kb "$bin/tessera" raster "${args[@]}")
       else kb=$(peak_kb "$peer" "${args[@]}"); fi
