@@ -9,7 +9,8 @@ through gnuplot (Debian gnuplot-nox; without it, tables only). Every figure and 
 name the machine (machine.txt), the command and the date.
 
 Plots follow the benchmarks' argument names (Google Benchmark ArgNames, shown in the
-benchmark name as key:value): `triangles`, `width` (or `pixels`), `lights`, `threads`.
+benchmark name as key:value): `triangles` (or `ktris`, `mtris`), `height` (or `width`,
+`pixels`), `lights`, `threads`; see AXES.
   time_vs_triangles.png  time_vs_resolution.png  time_vs_lights.png
   raster_vs_embree.png   (families whose name contains "Embree" against the others, by triangles)
   speedup_vs_threads.png (T(1 thread) / T(n threads) per configuration, with the ideal line)
@@ -51,17 +52,27 @@ def machine_facts(directory, context):
     return facts
 
 
+# Each plot axis and the argument names that mean it, with the factor to its unit.
+AXES = {
+    "triangles": (("triangles", 1), ("ktris", 1000), ("mtris", 1000000)),
+    "resolution": (("height", 1), ("width", 1), ("pixels", 1)),
+    "lights": (("lights", 1),),
+    "threads": (("threads", 1),),
+}
+
+
 def series_by(results, axis, family_filter=lambda family: True):
-    """{label: [(x, ms)]} for every benchmark with argument `axis`; the label is the family
-    plus the other arguments, so each line is one configuration."""
+    """{label: [(x, ms)]} for every benchmark with an argument meaning `axis`; the label is
+    the family plus the other arguments, so each line is one configuration."""
     series = defaultdict(list)
     for name, r in results.items():
         family, args = bench_results.parse_name(name)
-        if axis not in args or not family_filter(family):
+        key = next(((k, f) for k, f in AXES[axis] if k in args), None)
+        if key is None or not family_filter(family):
             continue
-        rest = ",".join(f"{k}={v}" for k, v in args.items() if k != axis)
+        rest = ",".join(f"{k}={v}" for k, v in args.items() if k != key[0])
         label = family + (f" ({rest})" if rest else "")
-        series[label].append((args[axis], r["real_ns"] / 1e6))
+        series[label].append((args[key[0]] * key[1], r["real_ns"] / 1e6))
     return {k: sorted(v) for k, v in series.items() if len(v) > 1}
 
 
@@ -160,8 +171,8 @@ def main():
 
     plots = {
         "time_vs_triangles": ("triangles", series_by(results, "triangles"), True, True, False),
-        "time_vs_resolution": ("width (px)", series_by(results, "width") or
-                               series_by(results, "pixels"), True, True, False),
+        "time_vs_resolution": ("image height (px)", series_by(results, "resolution"), True,
+                               True, False),
         "time_vs_lights": ("lights", series_by(results, "lights"), False, False, False),
         "speedup_vs_threads": ("threads", speedups(results), False, False, True),
     }
