@@ -44,10 +44,10 @@ GLuint compile(GLenum stage, const std::string& source) {
 std::string fragment_defines(const FrameOptions& options) {
     std::string defines;
     switch (options.shade) {
-        case Shade::id: defines = "#define SHADE_ID\n"; break;
-        case Shade::depth: defines = "#define SHADE_DEPTH\n"; break;
-        case Shade::normal: defines = "#define SHADE_NORMAL\n"; break;
-        case Shade::phong: defines = "#define SHADE_PHONG\n"; break;
+        case ShadeMode::id: defines = "#define SHADE_ID\n"; break;
+        case ShadeMode::depth: defines = "#define SHADE_DEPTH\n"; break;
+        case ShadeMode::normal: defines = "#define SHADE_NORMAL\n"; break;
+        case ShadeMode::phong: defines = "#define SHADE_PHONG\n"; break;
     }
     if (options.triangle_ids) defines += "#define WRITE_ID\n";
     return defines;
@@ -187,11 +187,11 @@ GlFrame::GlFrame(const Mesh& mesh, const Camera& camera, const FrameOptions& opt
     glEnable(GL_DEPTH_TEST);
     glDepthFunc(GL_LESS);
     glFrontFace(GL_CW);  // counter-clockwise in NDC, seen through the y flip below
-    if (options.cull == Cull::none) {
+    if (options.cull == CullMode::none) {
         glDisable(GL_CULL_FACE);
     } else {
         glEnable(GL_CULL_FACE);
-        glCullFace(options.cull == Cull::back ? GL_BACK : GL_FRONT);
+        glCullFace(options.cull == CullMode::back ? GL_BACK : GL_FRONT);
     }
     if (glGetError() != GL_NO_ERROR) throw Error("llvmpipe: OpenGL set-up failed");
 }
@@ -205,7 +205,7 @@ GlFrame::~GlFrame() {
 }
 
 void GlFrame::render() {
-    const GLfloat black[4] = {0.0f, 0.0f, 0.0f, 0.0f};
+    const GLfloat black[4] = {0.0f, 0.0f, 0.0f, 1.0f};
     const GLuint no_triangle[4] = {0, 0, 0, 0};
     const GLfloat far = 1.0f;
     glClearBufferfv(GL_COLOR, 0, black);
@@ -229,20 +229,19 @@ std::vector<T> GlFrame::read(unsigned attachment, unsigned format, unsigned type
     return pixels;
 }
 
-std::vector<uint8_t> GlFrame::colour_rgba8() const {
-    return read<uint8_t>(GL_COLOR_ATTACHMENT0, GL_RGBA, GL_UNSIGNED_BYTE, 4);
+std::vector<uint8_t> GlFrame::colour_rgb8() const {
+    return read<uint8_t>(GL_COLOR_ATTACHMENT0, GL_RGB, GL_UNSIGNED_BYTE, 3);
 }
 
-std::vector<uint32_t> GlFrame::triangle_ids() const {
-    if (!options_.triangle_ids) throw Error("llvmpipe: the triangle-id target was not rendered");
-    std::vector<uint32_t> ids = read<uint32_t>(GL_COLOR_ATTACHMENT1, GL_RED_INTEGER,
-                                               GL_UNSIGNED_INT, 1);
-    for (uint32_t& id : ids) id -= 1;  // 0 (cleared, nothing covers) wraps to 0xFFFFFFFF
-    return ids;
-}
-
-std::vector<float> GlFrame::window_depth() const {
-    return read<float>(GL_DEPTH_ATTACHMENT, GL_DEPTH_COMPONENT, GL_FLOAT, 1);
+VisibilityBuffer GlFrame::visibility() const {
+    VisibilityBuffer visibility;
+    visibility.reset(options_.width, options_.height);
+    visibility.depth = read<float>(GL_DEPTH_ATTACHMENT, GL_DEPTH_COMPONENT, GL_FLOAT, 1);
+    if (options_.triangle_ids) {
+        visibility.triangle = read<uint32_t>(GL_COLOR_ATTACHMENT1, GL_RED_INTEGER, GL_UNSIGNED_INT, 1);
+        for (uint32_t& id : visibility.triangle) id -= 1;  // 0 (cleared: empty) wraps to kNoTriangle
+    }
+    return visibility;
 }
 
 }  // namespace tessera::peer

@@ -1,23 +1,24 @@
 // One frame of a mesh rendered by OpenGL (the current context: llvmpipe through OSMesa) into
 // framebuffer objects, with readback in tessera's conventions: rows top to bottom, triangle
-// ids as in raster/visibility.h, window depth z_ndc * 0.5 + 0.5.
+// ids and window depth (z_ndc * 0.5 + 0.5) in a VisibilityBuffer, so tessera's writers
+// (raster/visibility_io.h) write the peer's files too.
 #pragma once
 #include <cstdint>
 #include <vector>
 
 #include "raster/camera.h"
 #include "raster/mesh.h"
+#include "raster/reference_shading.h"
+#include "raster/triangle_setup.h"
+#include "raster/visibility.h"
 
 namespace tessera::peer {
-
-enum class Shade { id, depth, normal, phong };
-enum class Cull { none, back, front };
 
 struct FrameOptions {
     int width = 1920;
     int height = 1080;
-    Shade shade = Shade::phong;
-    Cull cull = Cull::back;
+    ShadeMode shade = ShadeMode::phong;
+    CullMode cull = CullMode::none;
     bool triangle_ids = false;  // also render the triangle-id target (costs a second write)
 };
 
@@ -34,9 +35,10 @@ public:
     // around it measures the whole frame, not the queueing of commands.
     void render();
 
-    std::vector<uint8_t> colour_rgba8() const;     // width*height*4
-    std::vector<uint32_t> triangle_ids() const;    // needs FrameOptions::triangle_ids
-    std::vector<float> window_depth() const;       // width*height
+    // 8-bit RGB, black where nothing covers, as `tessera raster --out-color` writes it.
+    std::vector<uint8_t> colour_rgb8() const;
+    // Window depth, and triangle ids when FrameOptions::triangle_ids (else kNoTriangle).
+    VisibilityBuffer visibility() const;
 
 private:
     template <class T>

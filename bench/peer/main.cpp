@@ -3,20 +3,22 @@
 // can be timed on the same work (--repeat) and compared pixel for pixel (--out-id).
 #include <CLI/CLI.hpp>
 
+#include <optional>
+
 #include <algorithm>
 #include <chrono>
 #include <cstdio>
-#include <new>
-#include <optional>
+#include <cstdlib>
 #include <sstream>
 
-#include "bench/peer/frame_files.h"
 #include "bench/peer/gl_frame.h"
 #include "bench/peer/osmesa_context.h"
-#include "bench/peer/scene_input.h"
 #include "examples/command.h"
-#include "raster/error.h"
+#include "raster/camera_file.h"
 #include "raster/image_io.h"
+#include "raster/obj_loader.h"
+#include "raster/viewport.h"
+#include "raster/visibility_io.h"
 
 namespace {
 
@@ -25,45 +27,44 @@ using namespace tessera::peer;
 
 struct Options {
     std::string mesh, camera, size = "1920x1080";
-    std::optional<std::string> eye, lookat, up;
+    std::string eye, lookat, up;
     std::optional<float> fov, near, far;
-    Shade shade = Shade::phong;
-    Cull cull = Cull::back;
+    std::string shade = "phong", cull = "none";
     int threads = 0;
     std::string out_color, out_id, out_depth;
     int repeat = 0;
     bool stats = false;
 };
 
+// "x,y,z" -> vec3, or a UsageError naming the flag (as `tessera raster` parses it).
 glm::vec3 parse_vec3(const std::string& text, const char* flag) {
+    std::istringstream in(text);
     glm::vec3 v;
     char c1 = 0, c2 = 0;
-    std::istringstream in(text);
     std::string rest;
-    if (!(in >> v.x >> c1 >> v.y >> c2 >> v.z) || c1 != ',' || c2 != ',' || (in >> rest) ||
-        !std::isfinite(v.x) || !std::isfinite(v.y) || !std::isfinite(v.z))
-        throw cli::UsageError(std::string(flag) + " expects x,y,z (three finite numbers), got '" +
-                              text + "'");
+    if (!(in >> v.x >> c1 >> v.y >> c2 >> v.z) || c1 != ',' || c2 != ',' || (in >> rest))
+        throw cli::UsageError(std::string(flag) + " expects x,y,z, got '" + text + "'");
     return v;
 }
 
+CullMode parse_cull(const std::string& text) {
+    if (text == "none") return CullMode::none;
+    if (text == "back") return CullMode::back;
+    if (text == "front") return CullMode::front;
+    throw cli::UsageError("--cull expects none, back or front, got '" + text + "'");
+}
+
 Camera make_camera(const Options& o, int width, int height) {
-    Camera camera = load_camera(o.camera);
-    if (o.eye) camera.eye = parse_vec3(*o.eye, "--eye");
-    if (o.lookat) camera.lookat = parse_vec3(*o.lookat, "--lookat");
-    if (o.up) camera.up = parse_vec3(*o.up, "--up");
+    Camera camera;
+    if (!o.camera.empty()) read_camera_file(o.camera, camera);
+    if (!o.eye.empty()) camera.eye = parse_vec3(o.eye, "--eye");
+    if (!o.lookat.empty()) camera.lookat = parse_vec3(o.lookat, "--lookat");
+    if (!o.up.empty()) camera.up = parse_vec3(o.up, "--up");
     if (o.fov) camera.fovy_deg = *o.fov;
     if (o.near) camera.near = *o.near;
     if (o.far) camera.far = *o.far;
     camera.aspect = float(width) / float(height);
-    if (!(camera.fovy_deg > 0.0f && camera.fovy_deg < 180.0f))
-        throw cli::UsageError("the vertical field of view must lie in (0, 180) degrees");
-    if (!(camera.near > 0.0f && camera.far > camera.near && std::isfinite(camera.far)))
-        throw cli::UsageError("near and far must satisfy 0 < near < far");
-    const glm::vec3 forward = camera.lookat - camera.eye;
-    if (!(glm::length(glm::cross(forward, camera.up)) > 0.0f))
-        throw cli::UsageError("eye, lookat and up do not define a camera (eye == lookat, or up "
-                              "parallel to the view direction)");
+    validate_camera(camera);
     return camera;
 }
 
@@ -78,18 +79,19 @@ void print_frame_times(std::vector<double> ms) {
 int run(const Options& o) {
     int width = 0, height = 0;
     cli::parse_size(o.size, "--size", width, height);
+    const Viewport limits(width, height);  // the same size limits as tessera raster
+    FrameOptions frame_options;
+    frame_options.width = width;
+    frame_options.height = height;
+    frame_options.shade = parse_shade_mode(o.shade);
+    frame_options.cull = parse_cull(o.cull);
+    frame_options.triangle_ids = !o.out_id.empty();
     if (!o.out_color.empty() && !image_format_supported(o.out_color))
         throw cli::UsageError("--out-color: no image writer for '" + o.out_color + "'");
     const Camera camera = make_camera(o, width, height);
     const Mesh mesh = load_obj(o.mesh);
 
     OsMesaContext context(o.threads);  // sets LP_NUM_THREADS before llvmpipe starts
-    FrameOptions frame_options;
-    frame_options.width = width;
-    frame_options.height = height;
-    frame_options.shade = o.shade;
-    frame_options.cull = o.cull;
-    frame_options.triangle_ids = !o.out_id.empty();
     GlFrame frame(mesh, camera, frame_options);
 
     // The first frame JIT-compiles llvmpipe's shader variants; it is not a steady-state frame,
@@ -112,11 +114,14 @@ int run(const Options& o) {
                     mesh.triangle_count(), width, height);
 
     if (!o.out_color.empty()) {
-        const std::vector<uint8_t> rgba = frame.colour_rgba8();
-        write_image(o.out_color, ImageView{width, height, 4, PixelType::u8, rgba.data()});
+        const std::vector<uint8_t> rgb = frame.colour_rgb8();
+        write_image(o.out_color, ImageView{width, height, 3, PixelType::u8, rgb.data()});
     }
-    if (!o.out_id.empty()) write_triangle_ids(o.out_id, width, height, frame.triangle_ids());
-    if (!o.out_depth.empty()) write_depth_pfm(o.out_depth, width, height, frame.window_depth());
+    if (!o.out_id.empty() || !o.out_depth.empty()) {
+        const VisibilityBuffer visibility = frame.visibility();
+        if (!o.out_id.empty()) write_tsid(o.out_id, visibility);
+        if (!o.out_depth.empty()) write_depth_pfm(o.out_depth, visibility);
+    }
     return 0;
 }
 
@@ -132,35 +137,27 @@ int main(int argc, char** argv) {
     CLI::App app{"tessera-llvmpipe: renders like 'tessera raster', through Mesa's llvmpipe "
                  "(OSMesa), for timing and pixel comparisons",
                  "tessera-llvmpipe"};
-    app.add_option("--mesh", o.mesh, "OBJ file")->required();
-    app.add_option("--camera", o.camera, "CAM.txt (eye, lookat, up, fovy_deg, near, far)")
+    app.add_option("--mesh", o.mesh, "OBJ file (faces fan-triangulated; triangle id = order in file)")
         ->required();
-    app.add_option("--size", o.size, "image size WxH")->default_val("1920x1080");
-    app.add_option("--eye", o.eye, "x,y,z (overrides the camera file)");
-    app.add_option("--lookat", o.lookat, "x,y,z");
-    app.add_option("--up", o.up, "x,y,z");
+    app.add_option("--camera", o.camera, "camera file: lines 'eye x y z', 'lookat x y z', 'up x y z', "
+                                         "'fovy_deg f', 'near n', 'far f'");
+    app.add_option("--size", o.size, "image size WIDTHxHEIGHT")->default_val("1920x1080");
+    app.add_option("--eye", o.eye, "camera position x,y,z (overrides the file)");
+    app.add_option("--lookat", o.lookat, "point looked at x,y,z");
+    app.add_option("--up", o.up, "up direction x,y,z");
     app.add_option("--fov", o.fov, "vertical field of view, degrees");
     app.add_option("--near", o.near, "near plane distance");
     app.add_option("--far", o.far, "far plane distance");
-    const std::map<std::string, Shade> shades{{"id", Shade::id},
-                                              {"depth", Shade::depth},
-                                              {"normal", Shade::normal},
-                                              {"phong", Shade::phong}};
-    app.add_option("--shade", o.shade, "id|depth|normal|phong")
-        ->transform(CLI::CheckedTransformer(shades, CLI::ignore_case))
-        ->default_str("phong");
-    const std::map<std::string, Cull> culls{
-        {"none", Cull::none}, {"back", Cull::back}, {"front", Cull::front}};
-    app.add_option("--cull", o.cull, "none|back|front")
-        ->transform(CLI::CheckedTransformer(culls, CLI::ignore_case))
-        ->default_str("back");
+    app.add_option("--shade", o.shade, "id | depth | normal | phong")->default_val("phong");
+    app.add_option("--cull", o.cull, "none | back | front (front faces are counter-clockwise)")
+        ->default_val("none");
     tessera::cli::add_threads_option(app, o.threads);
-    app.add_option("--out-color", o.out_color, "colour image (PNG, EXR, TIFF...)");
-    app.add_option("--out-id", o.out_id, "triangle ids (TSID)");
-    app.add_option("--out-depth", o.out_depth, "window depth (PFM)");
-    app.add_option("--repeat", o.repeat, "render K timed frames and print frame_ms")
-        ->check(CLI::Range(1, 1000000));
-    app.add_flag("--stats", o.stats, "print the renderer, threads and triangle count");
+    app.add_option("--out-color", o.out_color, "colour image (PNG, EXR, TIFF...; 8-bit RGB)");
+    app.add_option("--out-id", o.out_id, "triangle ids (TSID: header, then uint32 LE per pixel)");
+    app.add_option("--out-depth", o.out_depth, "window depth (PFM, rows bottom to top)");
+    app.add_option("--repeat", o.repeat, "render K timed frames and print 'frame_ms median=X min=Y max=Z'")
+        ->check(CLI::Range(1, 100000));
+    app.add_flag("--stats", o.stats, "print the renderer, its threads and the triangle count");
     try {
         app.parse(argc, argv);
     } catch (const CLI::Success& done) {

@@ -35,6 +35,18 @@ layout(location = 0) out vec4 colour;
 layout(location = 1) out uint triangle_id;  // gl_PrimitiveID + 1; 0 is "nothing covers"
 #endif
 
+// procedural/hash.h in GLSL (uint arithmetic wraps modulo 2^32 as in C++): lowbias32 mixes.
+uint mix32(uint x) {
+    x ^= x >> 16; x *= 0x7feb352du; x ^= x >> 15; x *= 0x846ca68bu; x ^= x >> 16;
+    return x;
+}
+uint hash(uint seed, uint x) {
+    uint h = mix32(seed ^ 0x9e3779b9u);
+    h = mix32(h ^ x);
+    h = mix32(h ^ 0u);  // y = 0
+    return mix32(h ^ 0u);  // z = 0
+}
+
 // issue 3, --shade phong: two-sided Blinn-Phong with a checker albedo, no sRGB encoding.
 vec3 phong() {
     vec3 N = normalize(world_normal);
@@ -55,9 +67,9 @@ void main() {
 #elif defined(SHADE_DEPTH)
     colour = vec4(vec3(gl_FragCoord.z), 1.0);
 #else
-    // SHADE_ID: the id's low 24 bits as colour, so neighbouring triangles differ.
-    uint id = uint(gl_PrimitiveID);
-    colour = vec4(float(id & 255u), float((id >> 8) & 255u), float((id >> 16) & 255u), 255.0) / 255.0;
+    // SHADE_ID: procedural::hash(0x7e55e7a, id) as tessera colours ids (procedural/hash.h).
+    uint h = hash(0x7e55e7au, uint(gl_PrimitiveID));
+    colour = vec4(float(h & 255u), float((h >> 8) & 255u), float((h >> 16) & 255u), 255.0) / 255.0;
 #endif
 #ifdef WRITE_ID
     triangle_id = uint(gl_PrimitiveID) + 1u;
