@@ -1,14 +1,13 @@
 #!/usr/bin/env python3
 """Writes a benchmark workload as PREFIX.obj + PREFIX.cam (issue 3's CAM.txt), so that
 `tessera raster` and `tessera-llvmpipe` render identical work without committed data.
+(The single sphere and the MSOC fill-rate triangles come from `tessera testmesh`, the
+meshes of bench_raster; this script adds the two workloads it lacks.)
 
   gen-workload.py grid     --triangles N --pixels S [--size WxH] --out PREFIX
       Screen-aligned grid of S x S px quads (2 triangles each, shared vertices on pixel
       corners, so diagonals pass through pixel centres: a fill-rule test), filling the screen
       in layers from back to front until N triangles.
-  gen-workload.py fillrate --triangles N --pixels S [--size WxH] [--seed K] --out PREFIX
-      Intel MSOC FillrateTest style: random right triangles with legs of S px, submitted back
-      to front, so every fragment passes the depth test (the worst case).
   gen-workload.py spheres  --triangles N [--seed K] --out PREFIX
       A field of parametric spheres (seeds/000: n = (cos 2pi u sin pi v, sin 2pi u sin pi v,
       cos pi v), p = c + R n; 16 x 32 grid = 1024 triangles each) with normals and uv, for
@@ -97,22 +96,6 @@ def grid(args, obj):
                 obj.triangle(b, c, e)
 
 
-def fillrate(args, obj):
-    w, h = args.size
-    s = args.pixels
-    rng = random.Random(args.seed)
-    n = args.triangles
-    for t in range(n):
-        d = 9.0 - 8.0 * (t + 0.5) / n
-        x = rng.random() * max(w - s, 0)
-        y = rng.random() * max(h - s, 0)
-        uv = (x / w, y / h)
-        a = obj.vertex(unproject(x, y + s, d, w, h), (0, 0, 1), uv)
-        b = obj.vertex(unproject(x + s, y + s, d, w, h), (0, 0, 1), uv)
-        c = obj.vertex(unproject(x, y, d, w, h), (0, 0, 1), uv)
-        obj.triangle(a, b, c)
-
-
 def spheres(args, obj):
     nv, nu = 16, 32  # 2 * 16 * 32 = 1024 triangles per sphere
     count = max(1, round(args.triangles / (2 * nu * nv)))
@@ -156,17 +139,17 @@ def write_atomically(path, text):
 
 def main():
     parser = argparse.ArgumentParser(description=__doc__.split("\n")[0])
-    parser.add_argument("kind", choices=["grid", "fillrate", "spheres"])
+    parser.add_argument("kind", choices=["grid", "spheres"])
     parser.add_argument("--triangles", type=int, required=True)
     parser.add_argument("--pixels", type=int, default=10, help="triangle leg in pixels")
     parser.add_argument("--size", type=parse_size, default=(1920, 1080))
-    parser.add_argument("--seed", type=int, default=1)
+    parser.add_argument("--seed", type=int, default=1, help="spheres: radii and depths")
     parser.add_argument("--out", required=True, help="writes OUT.obj and OUT.cam")
     args = parser.parse_args()
     if args.triangles <= 0 or args.pixels <= 0:
         parser.error("--triangles and --pixels must be positive")
     obj = Obj()
-    camera = {"grid": grid, "fillrate": fillrate, "spheres": spheres}[args.kind](args, obj)
+    camera = {"grid": grid, "spheres": spheres}[args.kind](args, obj)
     header = "# tessera workload: %s\n" % " ".join(sys.argv[1:])
     write_atomically(args.out + ".obj", header + "".join(obj.lines))
     write_atomically(args.out + ".cam", camera or SCREEN_CAMERA)

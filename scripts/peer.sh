@@ -5,8 +5,9 @@
 #   scripts/peer.sh [--workload NAME]... [--size WxH] [--threads "1 2"] [--repeat K]
 #                   [--rounds R] [--shade MODE] [--memory] [--no-ids]
 #
-# Workloads (generated once by gen-workload.py into build/workloads/, never committed):
-#   spheres-1m (default)  1,048,576-triangle sphere field, --shade phong, --cull back
+# Workloads (generated once into build/workloads/ by `tessera testmesh` or gen-workload.py):
+#   sphere-1m (default)   bench_raster's UV sphere, ~1M triangles, --shade phong, --cull back
+#   spheres-1m            1,048,576-triangle field of 1024 small spheres, phong, --cull back
 #   grid-10px             1,048,576 triangles in 10 px grid quads, back to front, --shade id
 #   fill-10px fill-25px fill-50px fill-100px fill-250px
 #                         MSOC FillrateTest right triangles (counts as in its test), --shade id
@@ -39,7 +40,7 @@ while (($#)); do
     *) echo "peer: unknown argument '$1' (see --help)" >&2; exit 2 ;;
   esac
 done
-((${#workloads[@]})) || workloads=(spheres-1m)
+((${#workloads[@]})) || workloads=(sphere-1m)
 
 peer=$bin/tessera-llvmpipe
 [[ -x $peer ]] || { echo "peer: $peer was not built (install libosmesa6-dev and rebuild)" >&2; exit 1; }
@@ -53,22 +54,31 @@ mkdir -p "$out" "$workdir"
 { "$bin/tessera" info; echo "date: $(date -u '+%Y-%m-%d %H:%M UTC')"; echo "command: scripts/peer.sh $*"; } > "$out/machine.txt"
 jsonl=$out/peer.jsonl
 
-# workload NAME -> sets mesh, camera, shade, cull (generating the files if needed)
+# workload NAME -> sets mesh, camera, shade, cull (generating the files if needed). The
+# sphere and fill-rate meshes are bench_raster's own (`tessera testmesh`), so the peer ratios
+# and the Google Benchmark figures measure the same triangles.
 workload() {
-  local name=$1 gen
+  local name=$1 gen=() testmesh=()
   case $name in
+    sphere-1m)  testmesh=(--kind sphere --count 1048576); shade=phong; cull=back ;;
     spheres-1m) gen=(spheres --triangles 1048576); shade=phong; cull=back ;;
     grid-10px)  gen=(grid --triangles 1048576 --pixels 10 --size "$size"); shade=id; cull=none ;;
-    fill-10px)  gen=(fillrate --triangles 1048576 --pixels 10 --size "$size"); shade=id; cull=none ;;
-    fill-25px)  gen=(fillrate --triangles 1048576 --pixels 25 --size "$size"); shade=id; cull=none ;;
-    fill-50px)  gen=(fillrate --triangles 524288 --pixels 50 --size "$size"); shade=id; cull=none ;;
-    fill-100px) gen=(fillrate --triangles 262144 --pixels 100 --size "$size"); shade=id; cull=none ;;
-    fill-250px) gen=(fillrate --triangles 65536 --pixels 250 --size "$size"); shade=id; cull=none ;;
+    fill-10px)  testmesh=(--kind fillrate --count 1048576 --leg 10 --size "$size"); shade=id; cull=none ;;
+    fill-25px)  testmesh=(--kind fillrate --count 1048576 --leg 25 --size "$size"); shade=id; cull=none ;;
+    fill-50px)  testmesh=(--kind fillrate --count 524288 --leg 50 --size "$size"); shade=id; cull=none ;;
+    fill-100px) testmesh=(--kind fillrate --count 262144 --leg 100 --size "$size"); shade=id; cull=none ;;
+    fill-250px) testmesh=(--kind fillrate --count 65536 --leg 250 --size "$size"); shade=id; cull=none ;;
     *) echo "peer: unknown workload '$name'" >&2; exit 2 ;;
   esac
   local prefix=$workdir/$name
-  [[ $name == spheres-* ]] || prefix=$workdir/$name-$size
-  [[ -s $prefix.obj && -s $prefix.cam ]] || python3 "$root/scripts/gen-workload.py" "${gen[@]}" --out "$prefix" >&2
+  [[ $name == sphere* ]] || prefix=$workdir/$name-$size
+  if [[ ! -s $prefix.obj || ! -s $prefix.cam ]]; then
+    if ((${#testmesh[@]})); then
+      "$bin/tessera" testmesh "${testmesh[@]}" --out "$prefix.obj" --camera-out "$prefix.cam" >&2
+    else
+      python3 "$root/scripts/gen-workload.py" "${gen[@]}" --out "$prefix" >&2
+    fi
+  fi
   mesh=$prefix.obj camera=$prefix.cam
   [[ -z $shade_override ]] || shade=$shade_override
 }

@@ -53,21 +53,40 @@ if ! "$tessera" --help 2>/dev/null | grep -q '^ *raster '; then
   exit 77
 fi
 
-# workload NAME CULL GENERATOR-ARGS...: both renderers, same ids up to MAX_FRACTION
+# compare NAME CULL: both renderers on $tmp/NAME.{obj,cam}, the same ids up to MAX_FRACTION
 compare() {
-  local name=$1 cull=$2; shift 2
-  python3 "$scripts/gen-workload.py" "$@" --size 320x180 --out "$tmp/$name" >/dev/null || fail "gen $name"
+  local name=$1 cull=$2
   local args=(--mesh "$tmp/$name.obj" --camera "$tmp/$name.cam" --size 320x180 --shade id --cull "$cull")
   "$tessera" raster "${args[@]}" --threads 2 --out-id "$tmp/$name.t.id" || fail "tessera raster $name exited $?"
   "$peer" "${args[@]}" --threads 2 --out-id "$tmp/$name.p.id" || fail "tessera-llvmpipe $name exited $?"
-  local line
+  local line code
   line=$(python3 "$scripts/compare-ids.py" "$tmp/$name.t.id" "$tmp/$name.p.id" --max-fraction $MAX_FRACTION --show 5)
-  local code=$?
-  echo "$name: $line" | head -1
+  code=$?
+  echo "$name --cull $cull: $(head -1 <<<"$line")"
   ((code == 0)) || fail "$name: more than $MAX_FRACTION of the pixels differ (A = tessera, B = llvmpipe): $line"
 }
-compare grid none grid --triangles 10000 --pixels 4           # shared edges, diagonals on centres
-compare fill none fillrate --triangles 3000 --pixels 10        # overlaps, back to front
-compare spheres back spheres --triangles 16384                 # perspective, curved, culling
-compare spheres-nocull none spheres --triangles 16384          # depth test hides back faces
+gen() { python3 "$scripts/gen-workload.py" "$@" >/dev/null || fail "gen-workload.py $*"; }
+testmesh() { "$tessera" testmesh "$@" >/dev/null || fail "tessera testmesh $*"; }
+
+gen grid --triangles 10000 --pixels 4 --size 320x180 --out "$tmp/grid"   # diagonals on centres
+compare grid none
+testmesh --kind fillrate --count 3000 --leg 10 --size 320x180 --out "$tmp/fill.obj" --camera-out "$tmp/fill.cam"
+compare fill none                                                         # overlaps, back to front
+testmesh --kind random --count 3000 --leg 60 --size 320x180 --out "$tmp/random.obj" --camera-out "$tmp/random.cam"
+compare random none                                                       # any orientation, depth
+testmesh --kind sphere --count 20000 --out "$tmp/sphere.obj" --camera-out "$tmp/sphere.cam"
+compare sphere back                                                       # perspective, culling
+gen spheres --triangles 16384 --out "$tmp/spheres"
+compare spheres back
+compare spheres none                                                      # depth hides back faces
+
+# --shade phong is one shader in two languages: the colours must agree to 1/255 except where a
+# pixel's triangle or checker cell differs (a tiny fraction, as for the ids).
+for r in "$tessera raster" "$peer"; do
+  $r --mesh "$tmp/sphere.obj" --camera "$tmp/sphere.cam" --size 320x180 --shade phong --cull back \
+     --out-color "$tmp/phong.$(basename "${r%% *}").png" || fail "$r --shade phong exited $?"
+done
+diff=$(oiiotool "$tmp/phong.tessera.png" "$tmp/phong.tessera-llvmpipe.png" --fail 0.0040 --failpercent 0.5 --diff 2>&1)
+grep -q "^PASS\|WARNING" <<<"$diff" || fail "phong colours differ: $diff"
+echo "phong colours: $(grep -m1 'over\|PASS' <<<"$diff")"
 echo "cli_peer_conformance: ok"
