@@ -8,6 +8,7 @@
 # Workloads (generated once into build/workloads/ by `tessera testmesh` or gen-workload.py):
 #   sphere-1m (default)   bench_raster's UV sphere, ~1M triangles, --shade phong, --cull back
 #   spheres-1m            1,048,576-triangle field of 1024 small spheres, phong, --cull back
+#   sphere-20k            the same sphere with ~20k triangles (for --memory: small load peak)
 #   grid-10px             1,048,576 triangles in 10 px grid quads, back to front, --shade id
 #   fill-10px fill-25px fill-50px fill-100px fill-250px
 #                         MSOC FillrateTest right triangles (counts as in its test), --shade id
@@ -19,7 +20,9 @@
 # `frame_ms median`, and the ratio llvmpipe / tessera (how many times faster tessera is).
 # Then, unless --no-ids, it renders both with --shade id --out-id and counts differing pixels.
 # --memory: peak resident memory (getrusage ru_maxrss of the process) of one frame at 1080p, 4K
-# and 8K for each renderer, and the same minus a 64x64 frame (what the frame itself costs).
+# and 8K for each renderer on the first workload, and the same minus a 64x64 frame (what the
+# frame itself costs; with a big mesh the OBJ loading peak can hide it: use sphere-20k).
+# --threads "" skips the timing.
 # Results go to stdout and, as JSON lines, to bench/results/<stamp>/peer.jsonl with machine.txt.
 set -euo pipefail
 root=$(cd "$(dirname "$0")/.." && pwd)
@@ -36,7 +39,7 @@ while (($#)); do
     --shade) shade_override=$2; shift 2 ;;
     --memory) memory=1; shift ;;
     --no-ids) ids=0; shift ;;
-    -h|--help) sed -n '2,22p' "$0" | sed 's/^# \{0,1\}//'; exit 0 ;;
+    -h|--help) sed -n '2,26p' "$0" | sed 's/^# \{0,1\}//'; exit 0 ;;
     *) echo "peer: unknown argument '$1' (see --help)" >&2; exit 2 ;;
   esac
 done
@@ -61,6 +64,7 @@ workload() {
   local name=$1 gen=() testmesh=()
   case $name in
     sphere-1m)  testmesh=(--kind sphere --count 1048576); shade=phong; cull=back ;;
+    sphere-20k) testmesh=(--kind sphere --count 20000); shade=phong; cull=back ;;
     spheres-1m) gen=(spheres --triangles 1048576); shade=phong; cull=back ;;
     grid-10px)  gen=(grid --triangles 1048576 --pixels 10 --size "$size"); shade=id; cull=none ;;
     fill-10px)  testmesh=(--kind fillrate --count 1048576 --leg 10 --size "$size"); shade=id; cull=none ;;
