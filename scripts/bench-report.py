@@ -127,6 +127,17 @@ def peer_tables(directory):
                       f"{r['tessera_ms'] if r['tessera_ms'] is not None else '-'} | "
                       f"{r['llvmpipe_ms']} | {ratio} |")
         md.append("")
+    cpu = [r for r in rows if r["kind"] == "cpu"]
+    if cpu:
+        md += ["CPU time per frame (all threads; steadier than wall time on a shared machine):", "",
+               "| workload | size | shade | threads | tessera CPU ms | llvmpipe CPU ms | llvmpipe / tessera |",
+               "|---|---|---|---:|---:|---:|---:|"]
+        for r in cpu:
+            t = r["tessera_cpu_ms"]
+            ratio = "%.2f" % (r["llvmpipe_cpu_ms"] / t) if t else "-"
+            md.append(f"| {r['workload']} | {r['size']} | {r['shade']} | {r['threads']} | "
+                      f"{t if t is not None else '-'} | {r['llvmpipe_cpu_ms']} | {ratio} |")
+        md.append("")
     ids = [r for r in rows if r["kind"] == "ids"]
     if ids:
         md += ["| workload | size | pixels whose triangle id differs |", "|---|---|---:|"]

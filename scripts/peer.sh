@@ -3,7 +3,7 @@
 # same generated workloads, same size, same shading, same thread counts, in the same run.
 #
 #   scripts/peer.sh [--workload NAME]... [--size WxH] [--threads "1 2"] [--repeat K]
-#                   [--rounds R] [--shade MODE] [--memory] [--no-ids]
+#                   [--rounds R] [--shade MODE] [--cpu] [--memory] [--no-ids]
 #
 # Workloads (generated once into build/workloads/ by `tessera testmesh` or gen-workload.py):
 #   sphere-1m (default)   bench_raster's UV sphere, ~1M triangles, --shade phong, --cull back
@@ -18,6 +18,7 @@
 # For each workload and thread count it runs the two renderers alternately R times (default 3)
 # with `--repeat K` (default 10) and prints each one's median over the rounds of its
 # `frame_ms median`, and the ratio llvmpipe / tessera (how many times faster tessera is).
+# --cpu adds CPU milliseconds per frame of each (all threads; see cpu_ms_per_frame).
 # Then, unless --no-ids, it renders both with --shade id --out-id and counts differing pixels.
 # --memory: peak resident memory (getrusage ru_maxrss of the process) of one frame at 1080p, 4K
 # and 8K for each renderer on the first workload, and the same minus a 64x64 frame (what the
@@ -28,7 +29,7 @@ set -euo pipefail
 root=$(cd "$(dirname "$0")/.." && pwd)
 bin=${TESSERA_BUILD:-$root/build}/bin
 workdir=${TESSERA_WORKLOADS:-${TESSERA_BUILD:-$root/build}/workloads}
-workloads=() size=1920x1080 threads="1 2" repeat=10 rounds=3 memory=0 ids=1 shade_override=
+workloads=() size=1920x1080 threads="1 2" repeat=10 rounds=3 memory=0 cpu=0 ids=1 shade_override=
 while (($#)); do
   case $1 in
     --workload) workloads+=("$2"); shift 2 ;;
@@ -38,8 +39,9 @@ while (($#)); do
     --rounds) rounds=$2; shift 2 ;;
     --shade) shade_override=$2; shift 2 ;;
     --memory) memory=1; shift ;;
+    --cpu) cpu=1; shift ;;
     --no-ids) ids=0; shift ;;
-    -h|--help) sed -n '2,26p' "$0" | sed 's/^# \{0,1\}//'; exit 0 ;;
+    -h|--help) sed -n '2,27p' "$0" | sed 's/^# \{0,1\}//'; exit 0 ;;
     *) echo "peer: unknown argument '$1' (see --help)" >&2; exit 2 ;;
   esac
 done
@@ -97,6 +99,23 @@ median() {
   printf '%s\n' "$@" | sort -g | awk '{ v[NR] = $1 } END { printf "%.3f", NR % 2 ? v[(NR + 1) / 2] : (v[NR / 2] + v[NR / 2 + 1]) / 2 }'
 }
 
+# cpu_s COMMAND... -> user + system CPU seconds the command used (all its threads)
+cpu_s() {
+  python3 -c 'import resource, subprocess, sys
+r = subprocess.run(sys.argv[1:], stdout=subprocess.DEVNULL)
+u = resource.getrusage(resource.RUSAGE_CHILDREN)
+sys.exit(r.returncode) if r.returncode else print(u.ru_utime + u.ru_stime)' "$@"
+}
+
+# cpu_ms_per_frame RENDERER ARGS... -> CPU milliseconds per frame, from the difference between
+# 1 and 1 + repeat frames (loading and start-up cancel out). Unlike wall time it barely depends
+# on other processes sharing the cores, so on a busy machine it is the steadier measure of work.
+cpu_ms_per_frame() {
+  local one many
+  one=$(cpu_s "$@" --repeat 1) many=$(cpu_s "$@" --repeat $((1 + repeat)))
+  awk -v a="$one" -v b="$many" -v k="$repeat" 'BEGIN { printf "%.1f", (b - a) * 1000 / k }'
+}
+
 # peak_kb COMMAND... -> peak resident memory of the command in KiB (Linux ru_maxrss)
 peak_kb() {
   python3 -c 'import resource, subprocess, sys
@@ -122,6 +141,14 @@ for name in "${workloads[@]}"; do
       ratio=$(awk -v a="$lp" -v b="$ts" 'BEGIN { printf "%.2f", a / b }')
     fi
     printf '%-12s %-10s %7s %12s %12s %9s\n' "$name" "$size" "$t" "$ts" "$lp" "$ratio"
+    if ((cpu)); then
+      lc=$(cpu_ms_per_frame "$peer" "${common[@]}" --threads "$t") tc=nan
+      ((have_tessera)) && tc=$(cpu_ms_per_frame "$bin/tessera" raster "${common[@]}" --threads "$t")
+      printf '%-12s %-10s %7s %12s %12s %9s  (CPU ms per frame)\n' "" "" "" "$tc" "$lc" \
+        "$(awk -v a="$lc" -v b="$tc" 'BEGIN { if (b + 0 > 0) printf "%.2f", a / b; else print "nan" }')"
+      printf '{"kind":"cpu","workload":"%s","size":"%s","shade":"%s","threads":%s,"tessera_cpu_ms":%s,"llvmpipe_cpu_ms":%s}\n' \
+        "$name" "$size" "$shade" "$t" "${tc/nan/null}" "$lc" >> "$jsonl"
+    fi
     printf '{"kind":"time","workload":"%s","size":"%s","shade":"%s","threads":%s,"repeat":%s,"rounds":%s,"tessera_ms":%s,"llvmpipe_ms":%s}\n' \
       "$name" "$size" "$shade" "$t" "$repeat" "$rounds" "${ts/nan/null}" "$lp" >> "$jsonl"
   done
