@@ -1,11 +1,13 @@
 #include "bench/peer/gl_frame.h"
 
+// libOSMesa exports the GL entry points itself, so the prototypes are linked against it.
 #define GL_GLEXT_PROTOTYPES 1
-#include <GL/osmesa.h>
+#include <GL/gl.h>
 #include <GL/glext.h>
 
 #include <glm/gtc/type_ptr.hpp>
 
+#include <limits>
 #include <string>
 
 #include "bench/peer/peer_shaders.h"
@@ -125,6 +127,9 @@ void upload_attribute(GLuint buffer, GLuint location, const std::vector<T>& valu
 
 GlFrame::GlFrame(const Mesh& mesh, const Camera& camera, const FrameOptions& options)
     : options_(options) {
+    if (mesh.indices.size() > size_t(std::numeric_limits<GLsizei>::max()))
+        throw Error("llvmpipe: " + std::to_string(mesh.triangle_count()) +
+                    " triangles are more than one OpenGL draw call takes");
     program_ = link_program(options);
     glUseProgram(program_);
     // Rows top to bottom, and tessera's fill rule. llvmpipe applies its rule in framebuffer
@@ -186,7 +191,7 @@ GlFrame::GlFrame(const Mesh& mesh, const Camera& camera, const FrameOptions& opt
     glViewport(0, 0, options.width, options.height);
     glEnable(GL_DEPTH_TEST);
     glDepthFunc(GL_LESS);
-    glFrontFace(GL_CW);  // counter-clockwise in NDC, seen through the y flip below
+    glFrontFace(GL_CW);  // counter-clockwise in NDC, seen through the y flip of view_projection
     if (options.cull == CullMode::none) {
         glDisable(GL_CULL_FACE);
     } else {
