@@ -178,6 +178,14 @@ def main():
             md.append(f"| {name} | {bench_results.format_ns(r['real_ns'])} | "
                       f"{bench_results.format_ns(r['cpu_ns'])} | {counters} |")
         md.append("")
+    scaling = speedups(results)
+    if scaling:
+        md += ["### Thread scaling", "",
+               "| configuration | threads | speed-up vs 1 thread | efficiency per core |",
+               "|---|---:|---:|---:|"]
+        for label, points in sorted(scaling.items()):
+            md += [f"| {label} | {t} | {x:.2f} | {x / t:.2f} |" for t, x in points if t > 1]
+        md.append("")
     md += peer_tables(directory)
 
     plots = {

@@ -24,7 +24,8 @@
 # and 8K for each renderer on the first workload, and the same minus a 64x64 frame (what the
 # frame itself costs; with a big mesh the OBJ loading peak can hide it: use sphere-20k).
 # --threads "" skips the timing.
-# Results go to stdout and, as JSON lines, to bench/results/<stamp>/peer.jsonl with machine.txt.
+# Results go to stdout and, as JSON lines, to bench/results/<stamp>/peer.jsonl with machine.txt
+# (or to $TESSERA_RESULTS/peer.jsonl).
 set -euo pipefail
 root=$(cd "$(dirname "$0")/.." && pwd)
 bin=${TESSERA_BUILD:-$root/build}/bin
@@ -41,7 +42,7 @@ while (($#)); do
     --memory) memory=1; shift ;;
     --cpu) cpu=1; shift ;;
     --no-ids) ids=0; shift ;;
-    -h|--help) sed -n '2,27p' "$0" | sed 's/^# \{0,1\}//'; exit 0 ;;
+    -h|--help) sed -n '2,28p' "$0" | sed 's/^# \{0,1\}//'; exit 0 ;;
     *) echo "peer: unknown argument '$1' (see --help)" >&2; exit 2 ;;
   esac
 done
@@ -53,10 +54,11 @@ have_tessera=0
 "$bin/tessera" --help 2>/dev/null | grep -q "^ *raster " && have_tessera=1
 ((have_tessera)) || echo "peer: 'tessera raster' is not in this build; timing llvmpipe alone"
 
-stamp=$(date -u +%Y-%m-%dT%H%M%SZ)
-out=$root/bench/results/$stamp
+# TESSERA_RESULTS=DIR adds to an existing run (scripts/bench.sh does, for one report).
+out=${TESSERA_RESULTS:-$root/bench/results/$(date -u +%Y-%m-%dT%H%M%SZ)}
 mkdir -p "$out" "$workdir"
-{ "$bin/tessera" info; echo "date: $(date -u '+%Y-%m-%d %H:%M UTC')"; echo "command: scripts/peer.sh $*"; } > "$out/machine.txt"
+[[ -s $out/machine.txt ]] ||
+  { "$bin/tessera" info; echo "date: $(date -u '+%Y-%m-%d %H:%M UTC')"; echo "command: scripts/peer.sh $*"; } > "$out/machine.txt"
 jsonl=$out/peer.jsonl
 
 # workload NAME -> sets mesh, camera, shade, cull (generating the files if needed). The
