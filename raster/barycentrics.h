@@ -14,7 +14,10 @@
 
 #include <cmath>
 
+#include "raster/mesh.h"
 #include "raster/simd/simd.h"
+#include "raster/vertex_stage.h"
+#include "raster/viewport.h"
 
 namespace tessera {
 
@@ -52,5 +55,16 @@ struct PerspectiveBarycentrics {
         l2 = r2 * inv;
     }
 };
+
+// Barycentrics of triangle `id` of `mesh` from the clip-space vertices the rasterizer computed
+// (TileContext::clip, Rasterizer::clip_vertices()). The Embree path computes the clip-space
+// positions with clip_position() (vertex_stage.h) from the same world positions and passes
+// them to from_clip(): same bits, same coefficients.
+inline PerspectiveBarycentrics triangle_barycentrics(const Mesh& mesh, const ClipVertices& clip, uint32_t id,
+                                                     const Viewport& viewport) {
+    const uint32_t* index = &mesh.indices[3 * size_t(id)];
+    return PerspectiveBarycentrics::from_clip(clip.clip(index[0]), clip.clip(index[1]), clip.clip(index[2]),
+                                              viewport.width, viewport.height);
+}
 
 }  // namespace tessera

@@ -22,6 +22,10 @@ void ChunkBins::bin(const TileGrid& grid, std::vector<uint32_t>& count) {
     for (const TriangleSetup& t : setups) {
         const int tx0 = t.minx >> grid.shift, tx1 = t.maxx >> grid.shift;
         const int ty0 = t.miny >> grid.shift, ty1 = t.maxy >> grid.shift;
+        if (tx0 == tx1 && ty0 == ty1) {  // most triangles touch one tile
+            ++count[size_t(ty0) * grid.tiles_x + tx0 + 1];
+            continue;
+        }
         for (int ty = ty0; ty <= ty1; ++ty)
             for (int tx = tx0; tx <= tx1; ++tx) ++count[size_t(ty) * grid.tiles_x + tx + 1];
     }
@@ -34,6 +38,10 @@ void ChunkBins::bin(const TileGrid& grid, std::vector<uint32_t>& count) {
     for (const TriangleSetup& s : setups) {
         const int tx0 = s.minx >> grid.shift, tx1 = s.maxx >> grid.shift;
         const int ty0 = s.miny >> grid.shift, ty1 = s.maxy >> grid.shift;
+        if (tx0 == tx1 && ty0 == ty1) {
+            entries[count[size_t(ty0) * grid.tiles_x + tx0]++] = s;
+            continue;
+        }
         for (int ty = ty0; ty <= ty1; ++ty)
             for (int tx = tx0; tx <= tx1; ++tx) entries[count[size_t(ty) * grid.tiles_x + tx]++] = s;
     }

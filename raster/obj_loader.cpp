@@ -4,6 +4,8 @@
 
 #include <charconv>
 #include <cstdio>
+#include <cstring>
+#include <string_view>
 #include <tuple>
 #include <cmath>
 #include <fstream>
@@ -21,36 +23,58 @@ namespace {
     throw Error("cannot read '" + name + "': " + what);
 }
 
-// tinyobjloader reads unparsable numbers as 0 without a word; check the numeric records
-// ourselves first so that a malformed file is reported with its line.
-void check_numbers(const std::string& text, const std::string& name) {
-    std::istringstream in(text);
-    std::string line;
-    for (size_t number = 1; std::getline(in, line); ++number) {
-        if (line.empty() || line[0] != 'v') continue;
-        size_t need = 0;
-        if (line.rfind("v ", 0) == 0 || line.rfind("v\t", 0) == 0) need = 3;
-        else if (line.rfind("vn ", 0) == 0) need = 3;
-        else if (line.rfind("vt ", 0) == 0) need = 1;
-        else continue;
-        std::istringstream fields(line);
-        std::string token;
-        fields >> token;  // the keyword
-        size_t count = 0;
-        while (fields >> token) {
-            if (token[0] == '#') break;
-            double value;
-            const char* end = token.data() + token.size();
-            auto [ptr, ec] = std::from_chars(token.data(), end, value);
-            // Out-of-range numbers ("1e999") are accepted here and treated as huge below.
-            if (ptr != end || (ec != std::errc() && ec != std::errc::result_out_of_range))
-                fail(name, "line " + std::to_string(number) + ": '" + token + "' is not a number");
-            ++count;
+bool good(double v) { return std::isfinite(v) && std::fabs(v) <= kMaxObjCoordinate; }
+
+// tinyobjloader reads unparsable numbers (and "nan", "inf") as 0 and drops faces with fewer
+// than three corners without a word; check those records ourselves first so that a malformed
+// file is reported with its line. Returns, per "v" record in file order, whether it is bad
+// (NaN, infinite or huge).
+std::vector<uint8_t> check_records(const std::string& text, const std::string& name) {
+    std::vector<uint8_t> bad_positions;
+    const char* p = text.data();
+    const char* const end = p + text.size();
+    auto blank = [](char c) { return c == ' ' || c == '\t' || c == '\r'; };
+    for (size_t number = 1; p < end; ++number) {
+        const char* eol = static_cast<const char*>(std::memchr(p, '\n', size_t(end - p)));
+        if (!eol) eol = end;
+        // Tokens of this line, up to a comment.
+        auto next = [&](std::string_view& token) {
+            while (p < eol && blank(*p)) ++p;
+            if (p == eol || *p == '#') return false;
+            const char* start = p;
+            while (p < eol && !blank(*p)) ++p;
+            token = std::string_view(start, size_t(p - start));
+            return true;
+        };
+        const auto where = [&] { return "line " + std::to_string(number) + ": "; };
+        std::string_view keyword, token;
+        if (next(keyword)) {
+            if (keyword == "f") {
+                size_t corners = 0;
+                while (next(token)) ++corners;
+                if (corners < 3)
+                    fail(name, where() + "a face needs at least 3 vertices, found " + std::to_string(corners));
+            } else if (keyword == "v" || keyword == "vn" || keyword == "vt") {
+                const size_t need = keyword == "vt" ? 1 : 3;
+                size_t count = 0;
+                bool bad = false;
+                while (next(token)) {
+                    double value;
+                    auto [ptr, ec] = std::from_chars(token.data(), token.data() + token.size(), value);
+                    if (ptr != token.data() + token.size() ||
+                        (ec != std::errc() && ec != std::errc::result_out_of_range))
+                        fail(name, where() + "'" + std::string(token) + "' is not a number");
+                    if (count < 3) bad |= ec == std::errc::result_out_of_range || !good(value);
+                    ++count;
+                }
+                if (count < need)
+                    fail(name, where() + "expected " + std::to_string(need) + " numbers, found " + std::to_string(count));
+                if (keyword == "v") bad_positions.push_back(bad);
+            }
         }
-        if (count < need)
-            fail(name, "line " + std::to_string(number) + ": expected " + std::to_string(need) +
-                           " numbers, found " + std::to_string(count));
+        p = eol + 1;
     }
+    return bad_positions;
 }
 
 std::string first_line(std::string text) {
@@ -59,12 +83,11 @@ std::string first_line(std::string text) {
     return newline == std::string::npos ? text : text.substr(0, newline);
 }
 
-bool good(float v) { return std::isfinite(v) && std::fabs(v) <= kMaxObjCoordinate; }
-
 }  // namespace
 
 Mesh parse_obj(const std::string& text, const std::string& name, ObjLoadStats* stats) {
-    check_numbers(text, name);
+    if (text.find('\0') != std::string::npos) fail(name, "binary data, not an OBJ text file");
+    const std::vector<uint8_t> bad_records = check_records(text, name);
     tinyobj::ObjReaderConfig config;
     config.triangulate = false;  // fan from the first vertex ourselves (the documented order)
     config.vertex_color = false;
@@ -80,7 +103,8 @@ Mesh parse_obj(const std::string& text, const std::string& name, ObjLoadStats* s
     // Bad positions: replaced by the origin, their triangles made degenerate.
     std::vector<uint8_t> bad(positions, 0);
     for (size_t i = 0; i < positions; ++i)
-        if (!good(attrib.vertices[3 * i]) || !good(attrib.vertices[3 * i + 1]) || !good(attrib.vertices[3 * i + 2])) {
+        if ((i < bad_records.size() && bad_records[i]) || !good(attrib.vertices[3 * i]) ||
+            !good(attrib.vertices[3 * i + 1]) || !good(attrib.vertices[3 * i + 2])) {
             bad[i] = 1;
             ++s.bad_vertices;
         }

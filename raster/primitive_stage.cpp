@@ -30,7 +30,10 @@ void run_primitive_stage(const Mesh& mesh, const ClipVertices& v, const Viewport
             ++stats.invalid;
             continue;
         }
-        const uint32_t c0 = v.code[i0], c1 = v.code[i1], c2 = v.code[i2];
+        const ProjectedVertex& p0 = v.projected[i0];
+        const ProjectedVertex& p1 = v.projected[i1];
+        const ProjectedVertex& p2 = v.projected[i2];
+        const uint32_t c0 = p0.code, c1 = p1.code, c2 = p2.code;
         const uint32_t codes = c0 | c1 | c2;
         if (codes & kClipInvalid) {
             ++stats.invalid;
@@ -41,18 +44,21 @@ void run_primitive_stage(const Mesh& mesh, const ClipVertices& v, const Viewport
             continue;
         }
         const uint8_t transparent = any_transparent && options.transparent[t] ? 1 : 0;
-        TriangleSetup setup;
         if (codes == 0) {
-            const SetupResult result = setup_triangle({v.X[i0], v.Y[i0], v.Z[i0]}, {v.X[i1], v.Y[i1], v.Z[i1]},
-                                                      {v.X[i2], v.Y[i2], v.Z[i2]}, options.cull, viewport, setup);
+            // Set up in place; dropped again when not drawn.
+            TriangleSetup& setup = out.emplace_back();
+            const SetupResult result =
+                setup_triangle(p0.window, p1.window, p2.window, options.cull, viewport, setup);
             count(result, stats);
             if (result == SetupResult::drawn) {
                 setup.triangle = t;
                 setup.transparent = transparent;
-                out.push_back(setup);
+            } else {
+                out.pop_back();
             }
             continue;
         }
+        TriangleSetup setup;
         ++stats.clipped;
         const glm::vec4 in[3] = {v.clip(i0), v.clip(i1), v.clip(i2)};
         glm::vec4 polygon[kMaxClippedVertices];

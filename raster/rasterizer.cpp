@@ -133,11 +133,16 @@ void Rasterizer::render(const Mesh& mesh, const glm::mat4& view_projection, cons
             uint64_t visible = 0;
             for (int y = 0; y < h; ++y) {
                 const size_t row = size_t(rect.y0 + y) * viewport.width + rect.x0;
-                for (int x = 0; x < w; x += simd::kStampW) {
-                    const size_t n = size_t(std::min(simd::kStampW, w - x));
+                int x = 0;
+                for (; x + simd::kStampW <= w; x += simd::kStampW) {  // one stamp row at a time
                     const size_t i = buffers.index(x, y);
-                    std::memcpy(&visibility.triangle[row + x], &buffers.triangle[i], n * sizeof(uint32_t));
-                    std::memcpy(&visibility.depth[row + x], &buffers.depth[i], n * sizeof(float));
+                    std::memcpy(&visibility.triangle[row + x], &buffers.triangle[i], simd::kStampW * sizeof(uint32_t));
+                    std::memcpy(&visibility.depth[row + x], &buffers.depth[i], simd::kStampW * sizeof(float));
+                }
+                for (; x < w; ++x) {
+                    const size_t i = buffers.index(x, y);
+                    visibility.triangle[row + x] = buffers.triangle[i];
+                    visibility.depth[row + x] = buffers.depth[i];
                 }
                 if (stats)
                     for (int x = 0; x < w; ++x) visible += visibility.triangle[row + x] != kNoTriangle;

@@ -9,6 +9,12 @@
 //   r.render(mesh, camera.view_projection(), tessera::Viewport(w, h), options, vis,
 //            {shade_pass, blend_pass}, &color);
 //
+// A tile pass (tile_pass.h) gets a TileContext: the tile's rectangle, its row of the
+// VisibilityBuffer (triangle id + window depth), a linear RGBA colour tile, the mesh and its
+// clip-space vertices, and for_each_transparent() for blending. Shading interpolates with
+// perspective-correct barycentrics (barycentrics.h: triangle_barycentrics(mesh, *ctx.clip, id,
+// *ctx.viewport).at(x + 0.5f, y + 0.5f, l0, l1, l2), in float or simd::vfloat lanes).
+//
 // Pipeline (DESIGN.md "One frame"): vertex stage (SIMD, TBB over vertices) -> per chunk of
 // triangles: clip (near/far, guard band), cull, setup, bin into per-chunk tile bins (TBB over
 // chunks, no locks) -> per tile (TBB over tiles): clear, rasterize the bins in submission
@@ -32,7 +38,7 @@ namespace tessera {
 
 struct RasterOptions {
     CullMode cull = CullMode::none;
-    int tile_size = 64;                    // pixels, power of two in 16 .. 256
+    int tile_size = 128;                   // pixels, power of two in 16 .. 256 (128: measured best)
     std::span<const uint8_t> transparent;  // empty, or one flag per triangle (nonzero: transparent)
     glm::vec4 clear_color{0.0f, 0.0f, 0.0f, 0.0f};
 };

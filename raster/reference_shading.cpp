@@ -32,10 +32,8 @@ struct TriangleAttributes {
 void fetch(const TileContext& ctx, uint32_t id, TriangleAttributes& t) {
     const Mesh& mesh = *ctx.mesh;
     const uint32_t* index = &mesh.indices[3 * size_t(id)];
-    const ClipVertices& clip = *ctx.clip;
     t.id = id;
-    t.barycentrics = PerspectiveBarycentrics::from_clip(clip.clip(index[0]), clip.clip(index[1]), clip.clip(index[2]),
-                                                        ctx.viewport->width, ctx.viewport->height);
+    t.barycentrics = triangle_barycentrics(mesh, *ctx.clip, id, *ctx.viewport);
     for (int k = 0; k < 3; ++k) t.position[k] = mesh.positions[index[k]];
     if (mesh.normals.empty()) {
         const glm::vec3 n = glm::cross(t.position[1] - t.position[0], t.position[2] - t.position[0]);

@@ -35,33 +35,65 @@ EdgeLanes accepted_edge() { return {0, 0, 0, vint(0)}; }
 // frame coordinates): coverage from the three edges, depth from the plane. sink(index of the
 // stamp in the tile buffers, corner x, corner y, coverage, depth).
 template <class Sink>
-inline void traverse_stamps(const DepthPlane& plane, EdgeLanes e0, EdgeLanes e1, EdgeLanes e2,
-                            int sx0, int sy0, int sx1, int sy1, const TileRect& tile, int tile_size,
-                            Sink&& sink) {
+inline void traverse_stamps(const DepthPlane& plane, const EdgeLanes (&e)[3], int sx0, int sy0, int sx1,
+                            int sy1, const TileRect& tile, int tile_size, Sink&& sink) {
     const vfloat lane_x = simd::to_float(simd::stamp_x());
     const vfloat lane_y = simd::to_float(simd::stamp_y());
     const vfloat a(plane.a), b(plane.b), c(plane.c);
-    const int stamps_per_row = tile_size / kStampW;
+    // Edge values of the stamp row's first stamp, stepped with vector adds.
+    vint row0 = vint(e[0].f) + e[0].offset, row1 = vint(e[1].f) + e[1].offset, row2 = vint(e[2].f) + e[2].offset;
+    const vint step_x0(e[0].step_x), step_x1(e[1].step_x), step_x2(e[2].step_x);
+    const vint step_y0(e[0].step_y), step_y1(e[1].step_y), step_y2(e[2].step_y);
+    // An edge whose F does not grow to the right (step_x <= 0) that is negative over a whole
+    // stamp stays negative for the rest of the row: leave the row there.
+    const bool exit0 = e[0].step_x <= 0, exit1 = e[1].step_x <= 0, exit2 = e[2].step_x <= 0;
+    const vint zero(0);
+    const unsigned stamps_per_row = unsigned(tile_size / kStampW);
     for (int sy = sy0; sy <= sy1; sy += kStampH) {
         // DepthPlane::at: fma(a, x - ax, fma(b, y - ay, c)), x - ax and y - ay exact in float.
         const vfloat z_row = simd::fma(b, vfloat(float(sy - plane.ay)) + lane_y, c);
-        int32_t f0 = e0.f, f1 = e1.f, f2 = e2.f;
-        size_t index = (size_t((sy - tile.y0) / kStampH) * stamps_per_row + (sx0 - tile.x0) / kStampW) * kLanes;
-        for (int sx = sx0; sx <= sx1; sx += kStampW, index += kLanes) {
+        vint f0 = row0, f1 = row1, f2 = row2;
+        float fx = float(sx0 - plane.ax);
+        size_t index = (unsigned(sy - tile.y0) / kStampH * stamps_per_row + unsigned(sx0 - tile.x0) / kStampW) * kLanes;
+        for (int sx = sx0; sx <= sx1; sx += kStampW, index += kLanes, fx += float(kStampW)) {
             // Inside where all three F >= 0: one sign test on their bitwise OR.
-            const vint any_negative = (vint(f0) + e0.offset) | (vint(f1) + e1.offset) | (vint(f2) + e2.offset);
-            const vmask covered = any_negative >= vint(0);
-            f0 += e0.step_x;
-            f1 += e1.step_x;
-            f2 += e2.step_x;
-            if (!simd::any(covered)) continue;
-            vfloat z = simd::fma(a, vfloat(float(sx - plane.ax)) + lane_x, z_row);
-            z = simd::min(simd::max(z, vfloat(0.0f)), vfloat(1.0f));
-            sink(index, sx, sy, covered, z);
+            const vmask covered = (f0 | f1 | f2) >= zero;
+            if (simd::any(covered)) {
+                vfloat z = simd::fma(a, vfloat(fx) + lane_x, z_row);
+                z = simd::min(simd::max(z, vfloat(0.0f)), vfloat(1.0f));
+                sink(index, sx, sy, covered, z);
+            } else if ((exit0 && !simd::any(f0 >= zero)) || (exit1 && !simd::any(f1 >= zero)) ||
+                       (exit2 && !simd::any(f2 >= zero))) {
+                break;
+            }
+            f0 = f0 + step_x0;
+            f1 = f1 + step_x1;
+            f2 = f2 + step_x2;
         }
-        e0.f += e0.step_y;
-        e1.f += e1.step_y;
-        e2.f += e2.step_y;
+        row0 = row0 + step_y0;
+        row1 = row1 + step_y1;
+        row2 = row2 + step_y2;
+    }
+}
+
+// The stamps of a region entirely inside the triangle: every lane covered, depth only.
+template <class Sink>
+inline void fill_stamps(const DepthPlane& plane, int sx0, int sy0, int sx1, int sy1, const TileRect& tile,
+                        int tile_size, Sink&& sink) {
+    const vfloat lane_x = simd::to_float(simd::stamp_x());
+    const vfloat lane_y = simd::to_float(simd::stamp_y());
+    const vfloat a(plane.a), b(plane.b), c(plane.c);
+    const vmask all(true);
+    const unsigned stamps_per_row = unsigned(tile_size / kStampW);
+    for (int sy = sy0; sy <= sy1; sy += kStampH) {
+        const vfloat z_row = simd::fma(b, vfloat(float(sy - plane.ay)) + lane_y, c);
+        float fx = float(sx0 - plane.ax);
+        size_t index = (unsigned(sy - tile.y0) / kStampH * stamps_per_row + unsigned(sx0 - tile.x0) / kStampW) * kLanes;
+        for (int sx = sx0; sx <= sx1; sx += kStampW, index += kLanes, fx += float(kStampW)) {
+            vfloat z = simd::fma(a, vfloat(fx) + lane_x, z_row);
+            z = simd::min(simd::max(z, vfloat(0.0f)), vfloat(1.0f));
+            sink(index, sx, sy, all, z);
+        }
     }
 }
 
@@ -78,11 +110,12 @@ inline void traverse(const TriangleSetup& t, const TileRect& tile, int tile_size
     if (x0 > x1 || y0 > y1) return;
     const int sx0 = x0 & ~(kStampW - 1), sy0 = y0 & ~(kStampH - 1);
     if (t.small) {
-        // Small triangle: int32 lanes are exact anywhere near its box (fixed_point.h).
-        traverse_stamps(t.depth, edge_lanes(int32_t(edge_at(t, 0, sx0, sy0)), t.dx[0], t.dy[0]),
-                        edge_lanes(int32_t(edge_at(t, 1, sx0, sy0)), t.dx[1], t.dy[1]),
-                        edge_lanes(int32_t(edge_at(t, 2, sx0, sy0)), t.dx[2], t.dy[2]), sx0, sy0, x1,
-                        y1, tile, tile_size, sink);
+        // Small triangle: int32 is exact anywhere within a few pixels of its box, F at
+        // (minx, miny) included (fixed_point.h).
+        EdgeLanes lanes[3];
+        for (int i = 0; i < 3; ++i)
+            lanes[i] = edge_lanes(int32_t(t.f[i]) + t.dx[i] * (sy0 - t.miny) - t.dy[i] * (sx0 - t.minx), t.dx[i], t.dy[i]);
+        traverse_stamps(t.depth, lanes, sx0, sy0, x1, y1, tile, tile_size, sink);
         return;
     }
     // Big triangle: per 16x16 block, reject when an edge is negative over the whole block,
@@ -91,6 +124,7 @@ inline void traverse(const TriangleSetup& t, const TileRect& tile, int tile_size
     for (int by = y0 & ~(kBlock - 1); by <= y1; by += kBlock) {
         for (int bx = x0 & ~(kBlock - 1); bx <= x1; bx += kBlock) {
             EdgeLanes lanes[3];
+            bool full[3] = {false, false, false};
             bool rejected = false;
             const int px0 = std::max(bx, sx0), py0 = std::max(by, sy0);
             for (int i = 0; i < 3 && !rejected; ++i) {
@@ -99,11 +133,16 @@ inline void traverse(const TriangleSetup& t, const TileRect& tile, int tile_size
                 const int64_t lo = f + std::min<int64_t>(0, -dy) * kSpan + std::min<int64_t>(0, dx) * kSpan;
                 const int64_t hi = f + std::max<int64_t>(0, -dy) * kSpan + std::max<int64_t>(0, dx) * kSpan;
                 if (hi < 0) rejected = true;
-                else if (lo >= 0) lanes[i] = accepted_edge();
+                else if (lo >= 0) lanes[i] = accepted_edge(), full[i] = true;
                 else lanes[i] = edge_lanes(int32_t(edge_at(t, i, px0, py0)), t.dx[i], t.dy[i]);
             }
             if (rejected) continue;
-            traverse_stamps(t.depth, lanes[0], lanes[1], lanes[2], px0, py0,
+            const int bx1 = std::min(bx + kBlock - 1, x1), by1 = std::min(by + kBlock - 1, y1);
+            if (full[0] && full[1] && full[2]) {  // inside the triangle: depth only
+                fill_stamps(t.depth, px0, py0, bx1, by1, tile, tile_size, sink);
+                continue;
+            }
+            traverse_stamps(t.depth, lanes, px0, py0,
                             std::min(bx + kBlock - 1, x1), std::min(by + kBlock - 1, y1), tile,
                             tile_size, sink);
         }

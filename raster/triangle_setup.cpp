@@ -26,8 +26,9 @@ DepthPlane DepthPlane::from(const WindowVertex& v0, const WindowVertex& v1, cons
         p.c = v0.z;
         return p;
     }
-    const double a = (z1 * y2 - z2 * y1) / det;
-    const double b = (x1 * z2 - x2 * z1) / det;
+    const double inv_det = 1.0 / det;
+    const double a = (z1 * y2 - z2 * y1) * inv_det;
+    const double b = (x1 * z2 - x2 * z1) * inv_det;
     // Depth at the anchor pixel's centre.
     const double cx = (double(p.ax) + 0.5) - double(v0.X) / kSubpixels;
     const double cy = (double(p.ay) + 0.5) - double(v0.Y) / kSubpixels;
@@ -55,8 +56,8 @@ SetupResult setup_triangle(const WindowVertex& v0, const WindowVertex& v1_in,
         return SetupResult::culled_face;
     if (area2 < 0) std::swap(v1, v2);  // inside: all edge functions positive
 
-    const int32_t xmin = std::min({v0.X, v1.X, v2.X}), xmax = std::max({v0.X, v1.X, v2.X});
-    const int32_t ymin = std::min({v0.Y, v1.Y, v2.Y}), ymax = std::max({v0.Y, v1.Y, v2.Y});
+    const int32_t xmin = std::min(v0.X, std::min(v1.X, v2.X)), xmax = std::max(v0.X, std::max(v1.X, v2.X));
+    const int32_t ymin = std::min(v0.Y, std::min(v1.Y, v2.Y)), ymax = std::max(v0.Y, std::max(v1.Y, v2.Y));
     // Pixels whose centre 256x + 128 lies within [xmin, xmax].
     const int32_t minx = std::max((xmin + kSubpixels / 2 - 1) >> kSubpixelBits, 0);
     const int32_t maxx = std::min((xmax - kSubpixels / 2) >> kSubpixelBits, viewport.width - 1);
@@ -64,20 +65,20 @@ SetupResult setup_triangle(const WindowVertex& v0, const WindowVertex& v1_in,
     const int32_t maxy = std::min((ymax - kSubpixels / 2) >> kSubpixelBits, viewport.height - 1);
     if (minx > maxx || miny > maxy) return SetupResult::no_samples;
 
-    const WindowVertex* v[3] = {&v0, &v1, &v2};
-    for (int i = 0; i < 3; ++i) {
-        const WindowVertex& a = *v[i];
-        const WindowVertex& b = *v[(i + 1) % 3];
+    // E(P) = dX*(Py - Ya) - dY*(Px - Xa) at P = (256x + 128, 256y + 128) equals
+    // 256*(dX*y - dY*x) + K. Inside: E > 0, or E == 0 on a top/left edge, i.e.
+    // E - 1 + tl >= 0, i.e. (dX*y - dY*x) + floor((K - 1 + tl) / 256) >= 0 (>> floors).
+    auto edge = [&](int i, const WindowVertex& a, const WindowVertex& b) {
         const int32_t dX = b.X - a.X, dY = b.Y - a.Y;
-        // E(P) = dX*(Py - Ya) - dY*(Px - Xa) at P = (256x + 128, 256y + 128) equals
-        // 256*(dX*y - dY*x) + K. Inside: E > 0, or E == 0 on a top/left edge, i.e.
-        // E - 1 + tl >= 0, i.e. (dX*y - dY*x) + floor((K - 1 + tl) / 256) >= 0.
         const int64_t K = int64_t(dX) * (kSubpixels / 2 - a.Y) - int64_t(dY) * (kSubpixels / 2 - a.X) -
                           (is_top_left(dX, dY) ? 0 : 1);
-        out.f[i] = int64_t(dX) * miny - int64_t(dY) * minx + (K >> kSubpixelBits);  // >> floors
+        out.f[i] = int64_t(dX) * miny - int64_t(dY) * minx + (K >> kSubpixelBits);
         out.dx[i] = dX;
         out.dy[i] = dY;
-    }
+    };
+    edge(0, v0, v1);
+    edge(1, v1, v2);
+    edge(2, v2, v0);
     out.depth = DepthPlane::from(v0, v1, v2);
     out.minx = int16_t(minx);
     out.miny = int16_t(miny);

@@ -38,18 +38,14 @@ void run_vertex_stage(const Mesh& mesh, const glm::mat4& vp, const Viewport& vie
                       ClipVertices& out) {
     const size_t n = mesh.vertex_count();
     if (n == 0) {
-        for (auto* v : {&out.x, &out.y, &out.z, &out.w, &out.Z}) v->clear();
-        out.code.clear();
-        out.X.clear();
-        out.Y.clear();
+        for (auto* v : {&out.x, &out.y, &out.z, &out.w}) v->clear();
+        out.projected.clear();
         return;
     }
     // Padded to whole SIMD vectors so the last vector needs no special case.
     const size_t padded = (n + simd::kLanes - 1) / simd::kLanes * simd::kLanes;
-    for (auto* v : {&out.x, &out.y, &out.z, &out.w, &out.Z}) v->resize(padded);
-    out.code.resize(padded);
-    out.X.resize(padded);
-    out.Y.resize(padded);
+    for (auto* v : {&out.x, &out.y, &out.z, &out.w}) v->resize(padded);
+    out.projected.resize(padded);
 
     const float* positions = reinterpret_cast<const float*>(mesh.positions.data());
     static_assert(sizeof(glm::vec3) == 3 * sizeof(float));
@@ -91,16 +87,19 @@ void run_vertex_stage(const Mesh& mesh, const glm::mat4& vp, const Viewport& vie
             cy.store(&out.y[base]);
             cz.store(&out.z[base]);
             cw.store(&out.w[base]);
-            wz.store(&out.Z[base]);
-            code.store(reinterpret_cast<int32_t*>(&out.code[base]));
-            X.store(&out.X[base]);
-            Y.store(&out.Y[base]);
+            // Interleave into the 16-byte records.
+            alignas(64) int32_t xs[simd::kLanes], ys[simd::kLanes], codes[simd::kLanes];
+            alignas(64) float zs[simd::kLanes];
+            X.store(xs);
+            Y.store(ys);
+            wz.store(zs);
+            code.store(codes);
+            for (int i = 0; i < simd::kLanes; ++i)
+                out.projected[base + i] = {{xs[i], ys[i], zs[i]}, uint32_t(codes[i])};
         }
     });
-    for (auto* v : {&out.x, &out.y, &out.z, &out.w, &out.Z}) v->resize(n);
-    out.code.resize(n);
-    out.X.resize(n);
-    out.Y.resize(n);
+    for (auto* v : {&out.x, &out.y, &out.z, &out.w}) v->resize(n);
+    out.projected.resize(n);
 }
 
 }  // namespace tessera

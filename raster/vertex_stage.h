@@ -14,6 +14,7 @@
 #include "raster/aligned_vector.h"
 #include "raster/mesh.h"
 #include "raster/simd/simd.h"
+#include "raster/triangle_setup.h"
 #include "raster/viewport.h"
 
 namespace tessera {
@@ -47,12 +48,18 @@ inline void clip_position(const glm::mat4& m, F px, F py, F pz, F& cx, F& cy, F&
 // Outcode of one clip-space vertex (scalar; the vertex stage computes the same in SIMD).
 uint32_t clip_code(const Viewport& viewport, float x, float y, float z, float w);
 
-// Structure of arrays, one entry per mesh vertex.
+// What triangle setup reads of a vertex, in one 16-byte record (one cache access per corner
+// for meshes whose triangles index vertices far apart).
+struct ProjectedVertex {
+    WindowVertex window;  // snapped window position and depth (valid when code == 0)
+    uint32_t code;        // ClipCode bits
+};
+static_assert(sizeof(ProjectedVertex) == 16);
+
+// One entry per mesh vertex: clip space as a structure of arrays, plus the projected records.
 struct ClipVertices {
     AlignedVector<float> x, y, z, w;  // clip space
-    AlignedVector<uint32_t> code;     // ClipCode bits
-    AlignedVector<int32_t> X, Y;      // snapped window position, 16.8 fixed point (code == 0 only)
-    AlignedVector<float> Z;           // window depth (code == 0 only)
+    AlignedVector<ProjectedVertex> projected;
 
     size_t size() const { return x.size(); }
     glm::vec4 clip(size_t i) const { return {x[i], y[i], z[i], w[i]}; }

@@ -5,9 +5,10 @@
 #include <cstdint>
 
 // GCC 12 reports the _mm512_undefined_ps() pass-through operand of its masked builtins
-// (min, max, cvt) as maybe-uninitialized; it is unused by design.
+// (min, max, cvt) as (maybe-)uninitialized; it is unused by design.
 #pragma GCC diagnostic push
 #pragma GCC diagnostic ignored "-Wmaybe-uninitialized"
+#pragma GCC diagnostic ignored "-Wuninitialized"
 
 namespace tessera::simd {
 
