@@ -4,13 +4,13 @@
 
 #include <cstdint>
 
-// GCC 12 reports the _mm512_undefined_ps() pass-through operand of its masked builtins
-// (min, max, cvt) as (maybe-)uninitialized; it is unused by design.
-#pragma GCC diagnostic push
-#pragma GCC diagnostic ignored "-Wmaybe-uninitialized"
-#pragma GCC diagnostic ignored "-Wuninitialized"
+// GCC 12's plain min/max/cvt/sqrt/gather/srav intrinsics pass an _mm512_undefined_ps() operand to
+// their masked builtins, which -Wuninitialized reports wherever they are inlined; the masked
+// forms with an all-ones mask and an explicit pass-through compile to the same instructions.
 
 namespace tessera::simd {
+
+inline constexpr __mmask16 kAllLanes = 0xFFFF;
 
 inline constexpr int kLanes = 16;
 
@@ -40,7 +40,7 @@ inline vint operator-(vint a, vint b) { return _mm512_sub_epi32(a.v, b.v); }
 inline vint operator*(vint a, vint b) { return _mm512_mullo_epi32(a.v, b.v); }
 inline vint operator&(vint a, vint b) { return _mm512_and_si512(a.v, b.v); }
 inline vint operator|(vint a, vint b) { return _mm512_or_si512(a.v, b.v); }
-inline vint operator>>(vint a, vint s) { return _mm512_srav_epi32(a.v, s.v); }
+inline vint operator>>(vint a, vint s) { return _mm512_mask_srav_epi32(a.v, kAllLanes, a.v, s.v); }
 inline vmask operator>=(vint a, vint b) { return vmask(_mm512_cmpge_epi32_mask(a.v, b.v)); }
 inline vmask operator<(vint a, vint b) { return vmask(_mm512_cmplt_epi32_mask(a.v, b.v)); }
 inline vmask operator==(vint a, vint b) { return vmask(_mm512_cmpeq_epi32_mask(a.v, b.v)); }
@@ -63,15 +63,19 @@ inline vfloat operator*(vfloat a, vfloat b) { return _mm512_mul_ps(a.v, b.v); }
 inline vfloat operator/(vfloat a, vfloat b) { return _mm512_div_ps(a.v, b.v); }
 inline vfloat fma(vfloat a, vfloat b, vfloat c) { return _mm512_fmadd_ps(a.v, b.v, c.v); }
 // min/max return the second operand when either is NaN, like the scalar `a < b ? a : b`.
-inline vfloat min(vfloat a, vfloat b) { return _mm512_min_ps(a.v, b.v); }
-inline vfloat max(vfloat a, vfloat b) { return _mm512_max_ps(a.v, b.v); }
+inline vfloat min(vfloat a, vfloat b) { return _mm512_mask_min_ps(a.v, kAllLanes, a.v, b.v); }
+inline vfloat max(vfloat a, vfloat b) { return _mm512_mask_max_ps(a.v, kAllLanes, a.v, b.v); }
 inline vmask operator<(vfloat a, vfloat b) { return vmask(_mm512_cmp_ps_mask(a.v, b.v, _CMP_LT_OQ)); }
 inline vmask operator<=(vfloat a, vfloat b) { return vmask(_mm512_cmp_ps_mask(a.v, b.v, _CMP_LE_OQ)); }
 inline vfloat select(vmask m, vfloat a, vfloat b) { return _mm512_mask_blend_ps(m.m, b.v, a.v); }
-inline vfloat to_float(vint a) { return _mm512_cvtepi32_ps(a.v); }
-inline vfloat sqrt(vfloat a) { return _mm512_sqrt_ps(a.v); }
-inline vint round_to_int(vfloat a) { return _mm512_cvtps_epi32(a.v); }  // nearest even
-inline vfloat gather(const float* base, vint index) { return _mm512_i32gather_ps(index.v, base, 4); }
+inline vfloat to_float(vint a) { return _mm512_mask_cvtepi32_ps(_mm512_setzero_ps(), kAllLanes, a.v); }
+inline vfloat sqrt(vfloat a) { return _mm512_mask_sqrt_ps(a.v, kAllLanes, a.v); }
+inline vint round_to_int(vfloat a) {  // nearest even
+    return _mm512_mask_cvtps_epi32(_mm512_setzero_si512(), kAllLanes, a.v);
+}
+inline vfloat gather(const float* base, vint index) {
+    return _mm512_mask_i32gather_ps(_mm512_setzero_ps(), kAllLanes, index.v, base, 4);
+}
 
 // Aligned stores of the lanes selected by `m`.
 inline void store_masked(float* p, vmask m, vfloat a) { _mm512_mask_store_ps(p, m.m, a.v); }
@@ -79,4 +83,3 @@ inline void store_masked(uint32_t* p, vmask m, vint a) { _mm512_mask_store_epi32
 
 }  // namespace tessera::simd
 
-#pragma GCC diagnostic pop
