@@ -51,7 +51,7 @@ done
 peer=$bin/tessera-llvmpipe
 [[ -x $peer ]] || { echo "peer: $peer was not built (install libosmesa6-dev and rebuild)" >&2; exit 1; }
 have_tessera=0
-"$bin/tessera" --help 2>/dev/null | grep -q "^ *raster " && have_tessera=1
+grep -q "^ *raster " <<<"$("$bin/tessera" --help 2>/dev/null)" && have_tessera=1
 ((have_tessera)) || echo "peer: 'tessera raster' is not in this build; timing llvmpipe alone"
 
 # TESSERA_RESULTS=DIR adds to an existing run (scripts/bench.sh does, for one report).
