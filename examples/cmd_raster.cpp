@@ -1,14 +1,20 @@
-// `tessera raster`: renders one OBJ mesh with one camera through the tile rasterizer (issue 3).
+// `tessera raster`: renders one OBJ mesh with one camera through the tile rasterizer (issue 3),
+// or with --renderer raytrace through Embree primary rays (issue 6): same visibility buffer,
+// same shading passes, same outputs.
 // Used by other tools for conformance (Mesa llvmpipe comparison) and benchmarking, so its flags,
 // file formats and the `frame_ms median=X min=Y max=Z` line are a contract.
 #include <algorithm>
 #include <chrono>
+#include <memory>
 #include <cstdio>
 #include <sstream>
 #include <vector>
 
 #include "examples/command.h"
 #include "raster/camera_file.h"
+#include "raster/embree/ray_cast.h"
+#include "raster/embree/scene.h"
+#include "raster/embree/tile_passes.h"
 #include "raster/image_io.h"
 #include "raster/obj_loader.h"
 #include "raster/rasterizer.h"
@@ -40,6 +46,7 @@ struct Options {
     int repeat = 0;
     bool stats = false;
     int tile = 0;
+    std::string renderer = "raster";
 };
 
 CullMode parse_cull(const std::string& text) {
@@ -81,8 +88,13 @@ int run(const Options& o) {
     camera.aspect = float(width) / float(height);
     validate_camera(camera);
 
+    const bool raytrace = o.renderer == "raytrace";
+    if (raytrace && (cull != CullMode::none || o.tile))
+        throw UsageError("--cull and --tile apply to --renderer raster only");
+
     ObjLoadStats load;
-    const Mesh mesh = load_obj(o.mesh, &load);
+    Mesh mesh = load_obj(o.mesh, &load);
+    if (raytrace) rt::reserve_ray_padding(mesh);  // lets Embree share the vertex buffer
     const auto threads = limit_threads(o.threads);
 
     RasterOptions options;
@@ -97,9 +109,27 @@ int run(const Options& o) {
     const int frames = std::max(1, o.repeat);
     std::vector<double> frame_ms;
     RasterStats stats;
+    // The ray-cast frame: BVH built once (static mesh), then per frame primary rays and the
+    // same tile passes. Its --stats line reports the BVH and the mesh defects Embree skips.
+    std::unique_ptr<rt::RayScene> scene;
+    double build_ms = 0, trace_ms = 0, shade_ms = 0;
+    if (raytrace) {
+        const rt::RayDevice& device = rt::default_ray_device();  // created outside the timing
+        const auto start = std::chrono::steady_clock::now();
+        scene = std::make_unique<rt::RayScene>(device, mesh);
+        build_ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+    }
     for (int f = 0; f < frames; ++f) {
         const auto start = std::chrono::steady_clock::now();
-        rasterizer.render(mesh, view_projection, viewport, options, visibility, passes, nullptr, &stats);
+        if (raytrace) {
+            rt::cast_primary_rays(*scene, view_projection, width, height, visibility);
+            const auto traced = std::chrono::steady_clock::now();
+            rt::run_tile_passes(mesh, view_projection, viewport, visibility, passes);
+            trace_ms = std::chrono::duration<double, std::milli>(traced - start).count();
+            shade_ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - traced).count();
+        } else {
+            rasterizer.render(mesh, view_projection, viewport, options, visibility, passes, nullptr, &stats);
+        }
         frame_ms.push_back(std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count());
     }
 
@@ -118,7 +148,14 @@ int run(const Options& o) {
     if (o.stats) {
         std::printf("stats: obj_faces=%zu obj_triangles=%zu bad_vertices=%zu skipped_triangles=%zu\n", load.faces,
                     load.triangles, load.bad_vertices, load.skipped_triangles);
-        print_stats(stats, stats.passes_ms);
+        if (raytrace) {
+            const rt::MeshDefects& d = scene->defects();
+            std::printf("stats: bvh_build_ms=%.3f trace_ms=%.3f shade_ms=%.3f\n", build_ms, trace_ms, shade_ms);
+            std::printf("stats: triangles_in=%zu nonfinite=%zu bad_index=%zu degenerate=%zu\n",
+                        mesh.triangle_count(), d.nonfinite, d.bad_index, d.degenerate);
+        } else {
+            print_stats(stats, stats.passes_ms);
+        }
     }
     return 0;
 }
@@ -146,6 +183,9 @@ Run define_raster(CLI::App& root) {
     cmd->add_option("--repeat", o.repeat, "render K frames and print 'frame_ms median=X min=Y max=Z'")
         ->check(CLI::Range(1, 100000));
     cmd->add_flag("--stats", o.stats, "print per-stage times and counts");
+    cmd->add_option("--renderer", o.renderer, "raster | raytrace (Embree primary rays, same shading)")
+        ->check(CLI::IsMember({"raster", "raytrace"}))
+        ->default_val("raster");
     cmd->add_option("--tile", o.tile, "tile size in pixels (16..256, power of two; for measurements)")
         ->check(CLI::IsMember({16, 32, 64, 128, 256}));
     return [options] { return run(*options); };

@@ -1,112 +1,275 @@
-// `tessera render`: renders frames of a built-in example scene through the tile rasterizer and
-// the shading of raster/shade, writing each frame atomically.
-//   tessera render --scene NAME | --obj FILE [--model M] [--size WxH] [--time T] [--frames N --fps F] [--cull MODE]
-//                  [--cube-map 'DIR/{face}.png'] [--threads N] [--stats] --out FILE
-// With --frames N > 1, FILE must hold one frame number ("f_####.png" or "f_%04d.png"); frame i
-// shows the scene at time T + i / F. The extension picks the encoding (frame.h: .png 8-bit sRGB,
-// .exr float linear, .tif 16-bit sRGB).
+// `tessera render`: animation frames of a scene file.
+//   tessera render --scene NAME|FILE.json [--size WxH] [--frames A:B] [--fps F]
+//                  [--out out/NAME_####.png|.exr|.tif] [--threads N]
+//                  [--renderer raster|raytrace] [--shadows none|map|rays]
+//                  [--resume] [--shard I/N] [--stats] [--trace FILE.json] [--quiet]
+// Frames are encoded and written on a background thread (FrameWriter) while the next one
+// renders, each atomically (temp name + rename), so an interrupted run leaves only complete
+// frames and --resume skips them. Ctrl-C finishes the frame in hand, waits for the writer
+// and exits 130. Exit codes as every command: 2 for bad flags, 1 for a failed run.
+#include <unistd.h>
+
+#include <algorithm>
+#include <atomic>
+#include <chrono>
+#include <cmath>
+#include <cstring>
+#include <csignal>
 #include <cstdio>
 #include <filesystem>
-#include <memory>
+#include <map>
+#include <set>
 #include <string>
+#include <vector>
 
 #include "examples/command.h"
-#include "examples/example_scenes.h"
+#include "examples/progress.h"
+#include "raster/error.h"
 #include "raster/image_io.h"
 #include "raster/output/frame.h"
 #include "raster/output/frame_sequence.h"
 #include "raster/output/frame_writer.h"
-#include "raster/shade/scene_renderer.h"
+#include "raster/render/frame_renderer.h"
+#include "raster/scene_file/scene_build.h"
+#include "raster/scene_file/scene_library.h"
+#include "raster/scene_file/scene_parse.h"
+#include "raster/trace.h"
 
 namespace tessera::cli {
 namespace {
 
-struct Options {
-    std::string scene;
-    std::string size = "960x540";
-    float time = 0.0f;
-    int frames = 1;
-    float fps = 24.0f;
-    std::string cull = "none";
-    std::string out;
-    std::string cube_map;
-    std::string obj;
-    std::string model = "phong";
-    int threads = 0;
-    bool stats = false;
-};
+namespace fs = std::filesystem;
 
-void check(const Options& o, int& width, int& height) {
-    if (o.scene.empty() == o.obj.empty()) {
-        std::string names;
-        for (const std::string& n : examples::scene_names()) names += (names.empty() ? "" : ", ") + n;
-        throw UsageError("give either --scene NAME (" + names + ") or --obj FILE");
-    }
-    parse_size(o.size, "--size", width, height);
-    if (o.out.empty()) throw UsageError("--out FILE is required");
-    if (o.frames > 1 && !FramePattern(o.out).has_placeholder())
-        throw UsageError("--out '" + o.out + "' needs exactly one frame number (#### or %04d) when --frames > 1");
-    if (!image_format_supported(o.out))
-        throw UsageError("cannot write '" + o.out + "': no image format for extension '" +
-                         std::filesystem::path(o.out).extension().string() + "' (use .png, .exr or .tif)");
-    if (!std::isfinite(o.time) || !std::isfinite(o.fps) || o.fps <= 0.0f)
-        throw UsageError("--time must be finite and --fps positive");
+// Set by SIGINT, read between frames: the render stops after the frame in hand. The default
+// action comes back at once, so a second Ctrl-C ends a frame that takes too long.
+volatile std::sig_atomic_t g_interrupted = 0;
+extern "C" void on_interrupt(int) {
+    g_interrupted = 1;
+    std::signal(SIGINT, SIG_DFL);
 }
 
-int run(const Options& o) {
-    int width = 0, height = 0;
-    check(o, width, height);
-    SceneRenderOptions options;
-    options.cull = o.cull == "back" ? CullMode::back : o.cull == "front" ? CullMode::front : CullMode::none;
-    const auto limit = limit_threads(o.threads);
-    Scene scene = o.obj.empty() ? examples::make_scene(o.scene)
-                                : examples::obj_scene(o.obj, parse_shading_model(o.model));
-    if (!o.cube_map.empty()) {
-        scene.background.kind = Background::Kind::cube_map;
-        scene.background.cube = load_cube_map(o.cube_map);
+// Frames beyond this many pixels would need the streamed tiled output (not built yet):
+// 8192 x 8192 keeps the float frame, visibility and encode buffers near 2 GiB.
+constexpr int64_t kMaxPixels = int64_t(8192) * 8192;
+
+struct Options {
+    std::string scene = "snakes";
+    std::string size, frames, out, renderer = "raster", shadows, shard = "0/1", trace;
+    float fps = 0.0f;
+    int threads = 0;
+    bool resume = false, stats = false, quiet = false;
+};
+
+std::string lower_extension(const fs::path& p) {
+    std::string e = p.extension().string();
+    std::transform(e.begin(), e.end(), e.begin(), [](unsigned char c) { return char(std::tolower(c)); });
+    return e;
+}
+
+// The frame in the file's encoding (frame.h: PNG 8-bit sRGB, TIFF 16-bit sRGB, EXR float).
+OwnedImage encode(const Frame& frame, const fs::path& path) {
+    OwnedImage image{frame.width, frame.height, 4, PixelType::u8, {}};
+    const std::string ext = lower_extension(path);
+    if (ext == ".exr") {
+        image.type = PixelType::f32;
+        image.bytes.resize(frame.pixels.size() * sizeof(glm::vec4));
+        std::memcpy(image.bytes.data(), frame.pixels.data(), image.bytes.size());
+    } else if (ext == ".tif" || ext == ".tiff") {
+        image.type = PixelType::u16;
+        const std::vector<uint16_t> v = encode_srgb16(frame);
+        image.bytes.resize(v.size() * 2);
+        std::memcpy(image.bytes.data(), v.data(), image.bytes.size());
+    } else {
+        image.bytes = encode_srgb8(frame);
     }
-    scene.camera.aspect = float(width) / float(height);
-    SceneRenderer renderer;
-    const FramePattern pattern(o.out);
-    FrameWriter writer;  // encodes and writes frame i while frame i + 1 renders
-    for (int i = 0; i < o.frames; ++i) {
-        scene.animate(o.time + float(i) / o.fps);
-        RasterStats stats;
-        const Frame frame = renderer.render(scene, width, height, options, &stats);
-        const std::filesystem::path path = pattern.has_placeholder() ? pattern.path_for(i) : std::filesystem::path(o.out);
-        writer.submit(path, encode_frame(path, frame));
+    return image;
+}
+
+// Fails before any rendering when the output directory cannot take files.
+void prepare_output_directory(const fs::path& first_file) {
+    const fs::path dir = first_file.parent_path().empty() ? fs::path(".") : first_file.parent_path();
+    std::error_code ec;
+    fs::create_directories(dir, ec);
+    if (!fs::is_directory(dir))
+        throw Error("cannot write frames to '" + dir.string() + "': " + (ec ? ec.message() : "not a directory"));
+    if (access(dir.c_str(), W_OK) != 0)
+        throw Error("cannot write frames to '" + dir.string() + "': permission denied");
+}
+
+// A run killed mid-write (SIGKILL, power loss) leaves its temporary ".NAME.tmpPID_N" beside
+// the frame (atomic_file.h). --resume removes those of its own frames: other shards render
+// other frames, so their temporaries have other names and are never touched.
+void remove_stale_temporaries(const std::vector<fs::path>& frames) {
+    std::map<fs::path, std::set<std::string>> names;  // directory -> frame file names
+    for (const fs::path& f : frames)
+        names[f.parent_path().empty() ? fs::path(".") : f.parent_path()].insert(f.filename().string());
+    std::error_code ec;
+    for (const auto& [dir, wanted] : names) {
+        std::vector<fs::path> stale;
+        for (const auto& entry : fs::directory_iterator(dir, ec)) {
+            const std::string n = entry.path().filename().string();
+            const size_t tmp = n.rfind(".tmp");
+            if (n.size() > 1 && n[0] == '.' && tmp != std::string::npos && wanted.count(n.substr(1, tmp - 1)))
+                stale.push_back(entry.path());
+        }
+        for (const fs::path& p : stale) fs::remove(p, ec);
+    }
+}
+
+double median(std::vector<double> v) {
+    if (v.empty()) return 0.0;
+    std::sort(v.begin(), v.end());
+    return v.size() % 2 ? v[v.size() / 2] : 0.5 * (v[v.size() / 2 - 1] + v[v.size() / 2]);
+}
+
+int run(const Options& o, const std::string& executable) {
+    const auto guard = limit_threads(o.threads);
+    // Scene.
+    const fs::path file = find_scene(o.scene, scene_directories(TESSERA_SCENE_DIR, executable));
+    std::vector<std::string> warnings;
+    SceneSpec spec = load_scene_file(file, warnings);
+    for (const std::string& w : warnings) std::fprintf(stderr, "tessera: warning: %s\n", w.c_str());
+    const std::string scene_name = file.stem().string();
+
+    // Flags over the scene's defaults, all checked before any work.
+    int width = spec.size.x, height = spec.size.y;
+    if (!o.size.empty()) parse_size(o.size, "--size", width, height);
+    if (int64_t(width) * height > kMaxPixels)
+        throw UsageError("--size " + std::to_string(width) + "x" + std::to_string(height) +
+                         ": frames above 8192x8192 pixels need streamed tiled output, which this build lacks");
+    FrameRange range{spec.animation.first, spec.animation.last};
+    if (!o.frames.empty()) range = parse_frame_range(o.frames);
+    const Shard shard = parse_shard(o.shard);
+    const float fps = o.fps > 0.0f ? o.fps : spec.animation.fps;
+    if (!(fps > 0.0f) || !std::isfinite(fps)) throw UsageError("--fps must be positive");
+    const FramePattern pattern(o.out.empty() ? "out/" + scene_name + "_####.png" : o.out);
+    if (!pattern.has_placeholder() && range.count() > 1)
+        throw UsageError("--out '" + pattern.text() + "' has no #### or %04d, but " + std::to_string(range.count()) +
+                         " frames would overwrite it");
+    if (!image_format_supported(pattern.path_for(range.first)))
+        throw UsageError("--out '" + pattern.text() + "': no image format for that extension (use .png, .exr or .tif)");
+    const RendererKind renderer = parse_renderer(o.renderer);
+    const ShadowMode shadows = parse_shadow_mode(o.shadows.empty() ? spec.shadows : o.shadows);
+
+    prepare_output_directory(pattern.path_for(range.first));
+    std::vector<int> frames;
+    int skipped = 0;
+    const std::vector<int> shard_frames = frames_of_shard(range, shard);
+    if (o.resume) {
+        std::vector<fs::path> paths;
+        for (int f : shard_frames) paths.push_back(pattern.path_for(f));
+        remove_stale_temporaries(paths);
+    }
+    for (int f : shard_frames) {
+        if (o.resume && image_is_complete(pattern.path_for(f), width, height)) ++skipped;
+        else frames.push_back(f);
+    }
+
+    Trace trace;
+    if (!o.trace.empty()) trace.activate();
+    AnimatedScene scene = [&] {
+        TraceScope t("build scene");
+        return build_scene(std::move(spec));
+    }();
+    FrameRenderer frame_renderer(scene, width, height, renderer, shadows);
+    FrameWriter writer(2);
+
+    const bool tty = isatty(fileno(stderr)) != 0 && !o.quiet;
+    // On a terminal: a bar redrawn in place ("frame k/n, frames/s, ETA"); otherwise one plain
+    // line per frame, which logs and farm schedulers keep.
+    std::unique_ptr<Progress> progress;
+    if (tty && !frames.empty()) progress = std::make_unique<Progress>(scene_name, int64_t(frames.size()), "frames");
+    if (!o.quiet && skipped > 0) std::fprintf(stderr, "resume: %d complete frame(s) skipped\n", skipped);
+    std::signal(SIGINT, on_interrupt);
+    const auto start = std::chrono::steady_clock::now();
+    std::vector<double> totals, animate, bake, bvh, visibility, tiles;
+    size_t done = 0;
+    for (int f : frames) {
+        if (g_interrupted) break;
+        FrameStats st;
+        Frame frame;
+        {
+            TraceScope t("frame", "frame", f);
+            frame = frame_renderer.render(float(f) / fps, &st);
+        }
+        const fs::path path = pattern.path_for(f);
+        writer.submit(path, encode(frame, path));
+        ++done;
+        totals.push_back(st.total_ms);
+        animate.push_back(st.animate_ms);
+        bake.push_back(st.bake_ms);
+        bvh.push_back(st.bvh_ms);
+        visibility.push_back(st.visibility_ms);
+        tiles.push_back(st.tiles_ms);
         if (o.stats)
-            std::printf("%s: %llu triangles, %llu visible pixels, raster %.1f ms, shading %.1f ms, total %.1f ms\n",
-                        path.string().c_str(), (unsigned long long)stats.triangles, (unsigned long long)stats.visible_pixels,
-                        stats.vertex_ms + stats.setup_bin_ms + stats.raster_ms, stats.passes_ms, stats.total_ms);
+            std::fprintf(stderr,
+                         "%sframe %d: %.1f ms (animate %.1f, bake %.1f, bvh %.1f, visibility %.1f [vertex %.1f, "
+                         "setup+bin %.1f], tiles %.1f [shade, shadows, passes]), %llu triangles, %llu shadowed "
+                         "pixels\n",
+                         tty ? "\r\033[K" : "", f, st.total_ms, st.animate_ms, st.bake_ms, st.bvh_ms,
+                         st.visibility_ms, st.raster.vertex_ms, st.raster.setup_bin_ms, st.tiles_ms,
+                         static_cast<unsigned long long>(st.triangles),
+                         static_cast<unsigned long long>(st.shadowed_pixels));
+        if (progress) {
+            progress->update(int64_t(done));
+        } else if (!o.quiet) {
+            std::fprintf(stderr, "frame %d (%zu/%zu) %.1f ms -> %s\n", f, done, frames.size(), st.total_ms,
+                         path.string().c_str());
+        }
     }
     writer.finish();
+    if (progress && !g_interrupted) progress->finish();
+    progress.reset();
+    if (!o.trace.empty()) {
+        trace.deactivate();
+        trace.write(o.trace);
+    }
+    const double elapsed = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    if (o.stats && done > 0)
+        std::fprintf(stderr,
+                     "summary: %zu frames of %dx%d in %.2f s (%.2f fps); median per frame: total %.1f ms, animate %.1f, "
+                     "bake %.1f, bvh %.1f, visibility %.1f, tiles %.1f\n",
+                     done, width, height, elapsed, double(done) / elapsed, median(totals), median(animate),
+                     median(bake), median(bvh), median(visibility), median(tiles));
+    if (g_interrupted) {
+        std::fprintf(stderr, "tessera: interrupted: %zu frame(s) written; rerun with --resume to continue\n", done);
+        return 130;
+    }
+    if (!o.quiet && !tty)
+        std::fprintf(stderr, "rendered %zu frame(s) in %.2f s\n", done, elapsed);
     return 0;
 }
 
-Run define_render(CLI::App& root) {
-    auto o = std::make_shared<Options>();
-    CLI::App* cmd = root.add_subcommand("render", "render frames of an example scene (flag, toon, bumpcube, snakes)");
-    cmd->add_option("--scene", o->scene, "scene name: flag, toon, bumpcube or snakes");
-    cmd->add_option("--size", o->size, "frame size WxH")->default_val("960x540");
-    cmd->add_option("--time", o->time, "scene time of the first frame, seconds")->default_val(0.0f);
-    cmd->add_option("--frames", o->frames, "number of frames")->check(CLI::Range(1, 1000000))->default_val(1);
-    cmd->add_option("--fps", o->fps, "frames per second of scene time")->default_val(24.0f);
-    cmd->add_option("--cull", o->cull, "back-face culling: none, back or front")
-        ->check(CLI::IsMember({"none", "back", "front"}))
-        ->default_val("none");
-    cmd->add_option("--out", o->out, "output image (.png, .exr, .tif); a #### or %04d pattern for several frames");
-    cmd->add_option("--obj", o->obj, "render a Wavefront OBJ file instead of a built-in scene");
-    cmd->add_option("--model", o->model, "shading model for --obj: flat, gouraud, phong or toon")
-        ->default_val("phong");
-    cmd->add_option("--cube-map", o->cube_map,
-                    "environment from six images, e.g. 'sky/{face}.png' ({face}: px nx py ny pz nz)");
-    cmd->add_flag("--stats", o->stats, "print per-frame counts and times");
-    add_threads_option(*cmd, o->threads);
-    return [o] { return run(*o); };
+// The running binary (for scene directories next to an installed tessera).
+std::string executable_path() {
+    std::error_code ec;
+    const fs::path exe = fs::read_symlink("/proc/self/exe", ec);
+    return ec ? std::string() : exe.string();
 }
 
-TESSERA_COMMAND(20, define_render);
+TESSERA_COMMAND(20, [](CLI::App& root) -> Run {
+    auto o = std::make_shared<Options>();
+    CLI::App* cmd = root.add_subcommand("render", "Render animation frames of a scene (built-in name or FILE.json)");
+    cmd->add_option("--scene", o->scene, "Scene name (snakes, flag, toon, bumpcube, terrain, metaballs, stress) or FILE.json")
+        ->capture_default_str();
+    cmd->add_option("--size", o->size, "Frame size WxH (default: the scene's)");
+    cmd->add_option("--frames", o->frames, "Frames A:B, inclusive (default: the scene's)");
+    cmd->add_option("--fps", o->fps, "Frames per second of scene time (default: the scene's)");
+    cmd->add_option("--out", o->out, "Output pattern; #### or %04d is the frame number (.png, .exr, .tif)");
+    add_threads_option(*cmd, o->threads);
+    cmd->add_option("--renderer", o->renderer, "Visibility by the tile rasterizer or Embree rays")
+        ->check(CLI::IsMember({"raster", "raytrace"}))
+        ->capture_default_str();
+    cmd->add_option("--shadows", o->shadows, "Shadows: none, map or rays (default: the scene's)")
+        ->check(CLI::IsMember({"none", "map", "rays"}));
+    cmd->add_flag("--resume", o->resume, "Skip frames whose files are already complete");
+    cmd->add_option("--shard", o->shard, "Render shard I of N (every N-th frame from the I-th, 0-based)")
+        ->capture_default_str();
+    cmd->add_flag("--stats", o->stats, "Print per-stage times per frame and a summary");
+    cmd->add_option("--trace", o->trace, "Write a Chrome trace event JSON (Perfetto, chrome://tracing)");
+    cmd->add_flag("--quiet", o->quiet, "No progress output");
+    return [o] { return run(*o, executable_path()); };
+});
 
 }  // namespace
 }  // namespace tessera::cli

@@ -11,6 +11,7 @@
 
 #include "raster/bin.h"
 #include "raster/primitive_stage.h"
+#include "raster/trace.h"
 
 namespace tessera {
 
@@ -81,7 +82,10 @@ void Rasterizer::render(const Mesh& mesh, const glm::mat4& view_projection, cons
     const TileGrid& grid = s.grid;
 
     // Vertex stage.
-    run_vertex_stage(mesh, view_projection, viewport, s.vertices);
+    {
+        TraceScope trace("vertex stage");
+        run_vertex_stage(mesh, view_projection, viewport, s.vertices);
+    }
     const double vertex_ms = ms_since(start);
 
     // Primitive stage and binning, per chunk of triangles in parallel.
@@ -93,6 +97,7 @@ void Rasterizer::render(const Mesh& mesh, const glm::mat4& view_projection, cons
     s.chunk_stats.assign(chunk_count, RasterStats{});
     tbb::parallel_for(tbb::blocked_range<size_t>(0, chunk_count, 1), [&](const tbb::blocked_range<size_t>& r) {
         for (size_t c = r.begin(); c != r.end(); ++c) {
+            TraceScope trace("setup+bin chunk", "chunk", int(c));
             ChunkBins& chunk = s.chunks[c];
             chunk.setups.clear();
             const uint32_t first = uint32_t(c * chunk_size);
@@ -120,6 +125,7 @@ void Rasterizer::render(const Mesh& mesh, const glm::mat4& view_projection, cons
             const int tx = tile % grid.tiles_x, ty = tile / grid.tiles_x;
             const TileRect rect{tx * grid.size, ty * grid.size, std::min((tx + 1) * grid.size, grid.width),
                                 std::min((ty + 1) * grid.size, grid.height)};
+            TraceScope trace("raster tile", "tile", rect.x0, rect.y0);
             TileBuffers& buffers = scratch.buffers;
             buffers.clear(grid.size);
             for (const ChunkBins& chunk : s.chunks)

@@ -1,0 +1,61 @@
+// One animation frame of an AnimatedScene, start to finish (DESIGN.md "One frame"): animate,
+// bake, visibility (the tile rasterizer, or Embree primary rays), then per tile while it is
+// hot: shade the visible triangles, darken what the lights cannot reach (shadows), blend the
+// transparent triangles in submission order, and run the scene's compute passes (ray-marched
+// terrain and metaballs, fog). The same tile function serves both renderers, so they differ
+// only in how visibility was found.
+//
+// Shadows: each tile's visible points (shadow/surface_points.h) are tested against every light
+// with Embree occlusion rays (--shadows rays, embree/shadow_rays.h) or shadow maps rendered by
+// the rasterizer from each light (--shadows map, shadow/shadow_map.h); a directional light is
+// treated as a point light 10^4 units away along its direction. A point that faces a
+// light but cannot see it is re-shaded with that light's emission Le set to zero, which is
+// exactly the seed's formula with the light's direct term removed (ambient ka La stays), so
+// shadowed and lit pixels come from the same shading kernel. Points facing away from a light
+// keep the kernel's smooth N.L falloff (no stair-stepped terminator on coarse meshes).
+//
+// Deterministic: tiles never share writes and every pixel depends only on its own inputs.
+#pragma once
+#include <cstdint>
+#include <memory>
+#include <string_view>
+
+#include "raster/output/frame.h"
+#include "raster/rasterizer.h"
+#include "raster/scene_file/scene_build.h"
+
+namespace tessera {
+
+enum class RendererKind { raster, raytrace };
+enum class ShadowMode { none, map, rays };
+
+// Throw std::invalid_argument naming the accepted values.
+RendererKind parse_renderer(std::string_view name);
+ShadowMode parse_shadow_mode(std::string_view name);
+
+struct FrameStats {
+    // visibility: the rasterizer's vertex, setup/bin and tile raster stages, or Embree's
+    // primary rays; tiles: the per-tile work after it (shading, shadows, blending, passes).
+    double animate_ms = 0, bake_ms = 0, bvh_ms = 0, visibility_ms = 0, tiles_ms = 0, total_ms = 0;
+    uint64_t triangles = 0;
+    uint64_t shadowed_pixels = 0;
+    RasterStats raster;  // the raster renderer's own counts and stage times
+};
+
+class FrameRenderer {
+public:
+    // Throws std::invalid_argument for a bad size or shadows with more than 4 lights.
+    FrameRenderer(AnimatedScene& scene, int width, int height, RendererKind renderer, ShadowMode shadows);
+    ~FrameRenderer();
+    FrameRenderer(const FrameRenderer&) = delete;
+    FrameRenderer& operator=(const FrameRenderer&) = delete;
+
+    // The frame at `time` seconds, linear RGBA.
+    Frame render(float time, FrameStats* stats = nullptr);
+
+private:
+    struct Impl;
+    std::unique_ptr<Impl> impl_;
+};
+
+}  // namespace tessera
