@@ -1,8 +1,8 @@
 // The arithmetic the shading kernels are written in, once for both lane types: `float` (the
 // scalar reference path, one pixel at a time) and simd::vfloat (kLanes pixels per operation).
 // A kernel is a template over F that calls only what is defined here and in simd.h, so the
-// two instantiations compute the same formula in the same order (fp-contract is off in ISO
-// C++ mode, so float does not fuse where vfloat does not).
+// two instantiations compute the same formula in the same order (the raster library builds
+// with -ffp-contract=off, so float does not fuse where vfloat does not).
 #pragma once
 #include <bit>
 #include <cmath>
@@ -44,7 +44,7 @@ inline vfloat exponent_of(vfloat x, vfloat& mantissa) {
 }
 inline vfloat exp2_int(vfloat n) { return _mm512_maskz_scalef_ps(0xFFFF, _mm512_set1_ps(1.0f), n.v); }
 inline simd::vint gather_int(const int32_t* base, simd::vint index) {
-    return _mm512_i32gather_epi32(index.v, base, 4);
+    return _mm512_mask_i32gather_epi32(_mm512_setzero_si512(), 0xFFFF, index.v, base, 4);
 }
 inline vfloat floor_of(vfloat x) { return _mm512_maskz_roundscale_ps(0xFFFF, x.v, _MM_FROUND_TO_NEG_INF); }
 #elif defined(__AVX2__)
