@@ -249,7 +249,7 @@ std::string executable_path() {
 
 TESSERA_COMMAND(20, [](CLI::App& root) -> Run {
     auto o = std::make_shared<Options>();
-    CLI::App* cmd = root.add_subcommand("render", "Render animation frames of a scene (built-in name or FILE.json)");
+    CLI::App* cmd = root.add_subcommand("render", "render animation frames of a scene (built-in name or FILE.json)");
     cmd->add_option("--scene", o->scene, "Scene name (snakes, flag, toon, bumpcube, terrain, metaballs, stress) or FILE.json")
         ->capture_default_str();
     cmd->add_option("--size", o->size, "Frame size WxH (default: the scene's)");
