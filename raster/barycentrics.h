@@ -21,7 +21,7 @@ namespace tessera {
 struct PerspectiveBarycentrics {
     // r_i(x, y) = e[i].x * x + e[i].y * y + e[i].z in window pixel coordinates (pixel centre of
     // column c is x = c + 0.5, rows top to bottom).
-    glm::vec3 e[3];
+    glm::vec3 e[3]{};
 
     // `width` x `height`: the viewport (window = ((x_ndc + 1) W/2, (1 - y_ndc) H/2)).
     static PerspectiveBarycentrics from_clip(const glm::vec4& c0, const glm::vec4& c1, const glm::vec4& c2,

@@ -4,8 +4,12 @@
 
 #include <glm/gtc/matrix_transform.hpp>
 
+#include <cmath>
+
 #include "raster/rasterizer.h"
 #include "raster/reference_rasterizer.h"
+#include "procedural/hash.h"
+#include "raster/camera.h"
 #include "raster/test_meshes.h"
 
 namespace tessera {
@@ -62,6 +66,74 @@ TEST(RasterCoverage, RandomLargeTrianglesMatchReference) {
     expect_same_as_reference(
         test_meshes::to_world(test_meshes::random_triangles(2, 300, w, h, 400.0f, 100.0f), kIdentity, w, h),
         kIdentity, w, h);
+}
+
+// Vertices on pixel centres, pixel corners and half-way points: exact ties on edges, the
+// case the top-left rule decides.
+TEST(RasterCoverage, TrianglesOnPixelGridMatchReference) {
+    const int w = 200, h = 150;
+    WindowMesh m = test_meshes::random_triangles(5, 4000, w, h, 24.0f);
+    for (glm::vec3& p : m.positions) {
+        p.x = std::round(p.x * 2.0f) * 0.5f;
+        p.y = std::round(p.y * 2.0f) * 0.5f;
+    }
+    expect_same_as_reference(test_meshes::to_world(m, kIdentity, w, h), kIdentity, w, h);
+}
+
+// Slivers (one edge much shorter than the others, or nearly collinear vertices), zero-area
+// and repeated-vertex triangles.
+TEST(RasterCoverage, SliversAndDegeneratesMatchReference) {
+    const int w = 256, h = 160;
+    WindowMesh m = test_meshes::random_triangles(6, 2000, w, h, 200.0f, 20.0f);
+    for (size_t t = 0; t < m.indices.size() / 3; ++t) {
+        glm::vec3* p = &m.positions[3 * t];
+        switch (t % 4) {
+            case 0: p[2] = glm::mix(p[0], p[1], 0.37f) + glm::vec3(0.01f, -0.02f, 0.0f); break;  // sliver
+            case 1: p[2] = glm::mix(p[0], p[1], 0.5f); break;                                   // collinear
+            case 2: p[1] = p[0]; break;                                                          // repeated
+            default: p[1] = p[0] + glm::vec3(0.004f, 300.0f, 0.0f); break;                      // needle
+        }
+    }
+    expect_same_as_reference(test_meshes::to_world(m, kIdentity, w, h), kIdentity, w, h);
+}
+
+// Coordinates far beyond the viewport (guard band clipping) and beyond float-to-fixed range.
+TEST(RasterCoverage, HugeCoordinatesMatchReference) {
+    const int w = 128, h = 96;
+    WindowMesh m = test_meshes::random_triangles(8, 600, w, h, 1e5f, 2e4f);
+    WindowMesh huge = test_meshes::random_triangles(9, 200, w, h, 1e9f, 1e8f);
+    for (uint32_t& i : huge.indices) i += uint32_t(m.positions.size());
+    m.positions.insert(m.positions.end(), huge.positions.begin(), huge.positions.end());
+    m.indices.insert(m.indices.end(), huge.indices.begin(), huge.indices.end());
+    expect_same_as_reference(test_meshes::to_world(m, kIdentity, w, h), kIdentity, w, h);
+}
+
+// A perspective camera with triangles crossing the near plane and w = 0 (partly behind the
+// eye): clipped in homogeneous coordinates, not dropped.
+TEST(RasterCoverage, NearPlaneCrossingMatchesReference) {
+    const int w = 160, h = 120;
+    Camera camera;
+    camera.eye = {0.0f, 0.0f, 0.0f};
+    camera.lookat = {0.0f, 0.0f, -1.0f};
+    camera.aspect = float(w) / float(h);
+    camera.near = 0.5f;
+    camera.far = 20.0f;
+    Mesh mesh;
+    procedural::SplitMix64 rng(11);
+    auto r = [&](float lo, float hi) { return lo + (hi - lo) * rng.next_float(); };
+    for (int t = 0; t < 400; ++t) {
+        for (int k = 0; k < 3; ++k) {
+            mesh.indices.push_back(uint32_t(mesh.positions.size()));
+            // z from behind the eye (+4) to beyond the far plane (-25)
+            mesh.positions.push_back({r(-6.0f, 6.0f), r(-5.0f, 5.0f), r(-25.0f, 4.0f)});
+        }
+    }
+    RasterStats stats;
+    VisibilityBuffer vis;
+    Rasterizer rasterizer;
+    rasterizer.render(mesh, camera.view_projection(), Viewport(w, h), {}, vis, {}, nullptr, &stats);
+    EXPECT_GT(stats.clipped, 100u);
+    expect_same_as_reference(mesh, camera.view_projection(), w, h);
 }
 
 TEST(RasterCoverage, BackAndFrontCullingMatchReference) {
