@@ -1,9 +1,16 @@
 # The two set-up commands on a fresh Debian machine: `make demo` and `make test`.
 # Each installs what is missing (scripts/install-deps.sh), configures, builds and runs.
+# Hardening (CI runs all of them, .ci/run): `make sanitize` (ASan + UBSan, the whole suite),
+# `make tsan` (ThreadSanitizer, the parallel stages), `make fuzz` (libFuzzer targets, clang)
+# and `make fuzz-run` (each target for FUZZ_SECONDS).
 PRESET ?= release
 JOBS   ?= $(shell nproc)
+FUZZ_SECONDS ?= 15
+# Tests that exercise threads: the rasterizer's TBB stages, procedural generators, ray
+# marching, Embree, the background frame writer, scene rendering and the 1-vs-2-thread checks.
+TSAN_TESTS ?= Raster|Pipeline|Rd|Erosion|Heightfield|March|Embree|FrameWriter|SceneRenderer|Thread|Determinis
 
-.PHONY: all deps build test demo bench clean
+.PHONY: all deps build test demo bench sanitize tsan fuzz fuzz-run clean
 
 all: build
 
@@ -23,5 +30,22 @@ demo: build
 bench: build
 	bash scripts/bench.sh
 
+sanitize: deps
+	cmake --preset sanitize
+	cmake --build --preset sanitize -j $(JOBS)
+	ctest --preset sanitize -j $(JOBS)
+
+tsan: deps
+	cmake --preset tsan
+	cmake --build --preset tsan -j $(JOBS) --target tessera_tests
+	ctest --preset tsan -j $(JOBS) -R '$(TSAN_TESTS)'
+
+fuzz: deps
+	cmake --preset fuzz
+	cmake --build --preset fuzz -j $(JOBS)
+
+fuzz-run: fuzz
+	bash scripts/fuzz.sh $(FUZZ_SECONDS)
+
 clean:
-	rm -rf build build-debug build-sanitize build-portable
+	rm -rf build build-debug build-sanitize build-portable build-tsan build-fuzz
