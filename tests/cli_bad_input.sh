@@ -45,16 +45,16 @@ printf "v 0 0 0\nv 0 0 0\nv 0 0 0\nv -1 -1 0\nv 0 0 0\nv 1 1 0\nf 1 2 3\nf 4 5 6
 
 raster 1 "no such file" "$in/missing.obj"
 raster 0 "" "$in/empty.obj"                  # an empty mesh is an empty image
-raster 1 "garbage.obj" "$in/garbage.obj"
-raster 1 "line 4" "$in/truncated_v.obj"
-raster 1 "line 4" "$in/truncated_f.obj"
+raster 1 "binary data" "$in/garbage.obj"
+raster 1 "line 5: expected 3 numbers" "$in/truncated_v.obj"
+raster 1 "line 4: a face needs" "$in/truncated_f.obj"
 raster 1 "out of range" "$in/huge_index.obj"
 raster 1 "out of range" "$in/negative_index.obj"
 raster 0 "" "$in/nonfinite.obj"              # bad vertices: their triangles are skipped, counted
 raster 0 "" "$in/degenerate.obj"             # zero-area and collinear triangles cover nothing
 expect 2 "size" -- raster --mesh "$in/ok.obj" --size 0x0 --out-id @OUT@/i.id
 expect 0 "" -- raster --mesh "$in/ok.obj" --size 1x1 --out-id @OUT@/i.id
-expect 2 "size" -- raster --mesh "$in/ok.obj" --size 100000x100000 --out-id @OUT@/i.id
+expect 2 "100000x100000" -- raster --mesh "$in/ok.obj" --size 100000x100000 --out-id @OUT@/i.id
 expect 1 "cannot write" -- raster --mesh "$in/ok.obj" --size 8x8 --out-id "$dir/no/such/dir/i.id"
 expect 1 "cannot write" -- raster --mesh "$in/ok.obj" --size 8x8 --out-id /dev/full
 expect 1 "cannot write" -- raster --mesh "$in/ok.obj" --size 8x8 --out-color "$in/ok.obj/c.png"
@@ -83,7 +83,7 @@ render 1 "malformed JSON" "$in/truncated.json"
 render 1 "tessellation" "$in/huge_index.json"
 render 1 "frames" "$in/huge_frames.json"
 render 0 "" "$in/huge_coordinate.json"       # renders (the sphere is far out of view)
-render 1 "radius" "$in/infinite.json"
+render 1 "number overflow" "$in/infinite.json"
 render 1 "malformed JSON" "$in/nan.json"
 render 1 "size" "$in/zero_area.json"
 render 0 "" "$in/collinear.json"             # a flat ellipsoid: edge-on triangles cover nothing
