@@ -22,27 +22,31 @@ cat >"$dir/spin.json" <<'JSON'
  ]}
 JSON
 frames=60
-run() {  # run OUTDIR [flags...]: frames 1..$frames of the scene at 40x30
-    local out=$1; shift
-    "$tessera" render --scene "$dir/spin.json" --size 40x30 --frames 1:$frames --out "$out/f_####.png" "$@"
-}
+args=(render --scene "$dir/spin.json" --size 64x48 --frames 1:$frames)
 
 # Reference: one uninterrupted run.
-run "$dir/reference" --quiet || fail "reference render exited $?"
+"$tessera" "${args[@]}" --quiet --out "$dir/reference/f_####.png" || fail "reference render exited $?"
 
-# Interrupted runs, then a final --resume to completion.
+# Interrupted runs, then a final --resume to completion. Each kill comes once a random number
+# (1..12) of further frames is on disk, i.e. at a random point of the frame loop and the
+# background writer.
 mkdir -p "$dir/resumed"
 RANDOM=$$
+interrupted=0
 for signal in KILL INT KILL; do
-    run "$dir/resumed" --resume 2>>"$dir/log" &
+    "$tessera" "${args[@]}" --resume --out "$dir/resumed/f_####.png" 2>>"$dir/log" &
     pid=$!
-    sleep "0.$((RANDOM % 8 + 1))"
+    target=$(( $(ls "$dir/resumed" | wc -l) + 1 + RANDOM % 12 ))
+    for _ in $(seq 1000); do [ "$(ls "$dir/resumed" | wc -l)" -ge $target ] && break; sleep 0.01; done
     kill -s $signal $pid 2>/dev/null
     wait $pid; code=$?
     # SIGKILL: 137; SIGINT: 130 (finishes the frame in hand); 0 if it finished first.
-    case $signal:$code in KILL:137 | INT:130 | *:0) ;; *) fail "render killed by $signal exited $code" ;; esac
+    case $signal:$code in KILL:137 | INT:130) interrupted=$((interrupted + 1)) ;; *:0) ;;
+        *) fail "render killed by $signal exited $code" ;; esac
+    echo "after SIG$signal (exit $code): $(ls "$dir/resumed" | wc -l) of $frames frames on disk"
 done
-run "$dir/resumed" --resume 2>>"$dir/log" || fail "final --resume exited $?"
+[ $interrupted -ge 1 ] || fail "no run was interrupted (frames render too fast for this test)"
+"$tessera" "${args[@]}" --resume --out "$dir/resumed/f_####.png" 2>>"$dir/log" || fail "final --resume exited $?"
 
 # Every frame exactly once, identical to the reference; nothing else but (after SIGKILL)
 # hidden temporaries of frames that were being written.
@@ -51,6 +55,8 @@ for f in $(seq 1 $frames); do
     [ -f "$dir/resumed/$name" ] || fail "frame $f missing after resume"
     cmp -s "$dir/reference/$name" "$dir/resumed/$name" || fail "frame $f differs from the uninterrupted render"
 done
+hidden=$(ls -A "$dir/resumed" | grep -c "^\\.")
+echo "temporaries left by SIGKILL: $hidden"
 visible=$(ls "$dir/resumed" | wc -l)
 [ "$visible" -eq $frames ] || fail "expected $frames frame files, found $visible: $(ls "$dir/resumed" | head)"
 grep -q 'complete frame(s) skipped' "$dir/log" || fail "--resume never skipped a frame: $(cat "$dir/log")"
