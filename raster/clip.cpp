@@ -1,5 +1,7 @@
 #include "raster/clip.h"
 
+#include <cmath>
+
 #include "raster/vertex_stage.h"
 
 namespace tessera {
@@ -62,7 +64,12 @@ int clip_triangle(const glm::vec4 in[3], uint32_t codes, const Viewport& viewpor
     for (int i = 0; i < count; ++i) {
         // w > 0 holds after the near cut for any projection whose near plane is in front of
         // the eye; a vertex with w <= 0 left by a degenerate matrix cannot be projected.
-        if (!(buffer[current][i].w > 0.0f)) return 0;
+        // Finite inputs near FLT_MAX can overflow in the plane distances (inf - inf = NaN
+        // in t): such a polygon is dropped too (found by tests/fuzz/fuzz_raster.cpp).
+        const glm::vec4& c = buffer[current][i];
+        if (!(c.w > 0.0f) || !std::isfinite(c.x) || !std::isfinite(c.y) || !std::isfinite(c.z) ||
+            !std::isfinite(c.w))
+            return 0;
         out[i] = buffer[current][i];
     }
     return count;
