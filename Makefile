@@ -6,9 +6,10 @@
 PRESET ?= release
 JOBS   ?= $(shell nproc)
 FUZZ_SECONDS ?= 15
-# Tests that exercise threads: the rasterizer's TBB stages, procedural generators, ray
-# marching, Embree, the background frame writer, scene rendering and the 1-vs-2-thread checks.
-TSAN_TESTS ?= Raster|Pipeline|Rd|Erosion|Heightfield|March|Embree|FrameWriter|SceneRenderer|Thread|Determinis
+# Tests that exercise threads (25): thread-count and tile-size comparisons, the rasterizer's
+# TBB stages, compute passes, Embree on the shared pool, the background frame writer, the
+# trace recorder and the raster fuzz corpus.
+TSAN_TESTS ?= Thread|Deterministic|RasterPipeline|RasterCoverage.Random|FrameWriter|MarchPass|SceneRenderer|TbbPool|FuzzRegression.Raster|SameBytes|Tiles|Trace
 
 .PHONY: all deps build test demo bench sanitize tsan fuzz fuzz-run clean
 
