@@ -1,29 +1,15 @@
 #include "raster/triangle_setup.h"
 
 #include <algorithm>
-#include <climits>
 #include <cmath>
-#include <cstdint>
 
 namespace tessera {
-
-namespace {
-
-// Round to the nearest integer as the SIMD vertex stage's cvtps2dq does, including its answer
-// for NaN and values beyond int32 (INT32_MIN, "integer indefinite"); a plain int32_t() cast
-// of those is undefined behaviour. A tiny positive w left by clipping can make x / w
-// overflow (found by tests/fuzz/fuzz_raster.cpp).
-int32_t round_like_simd(float v) {
-    return std::fabs(v) < 2147483648.0f ? int32_t(std::nearbyint(v)) : INT32_MIN;
-}
-
-}  // namespace
 
 WindowVertex project_and_snap(const Viewport& viewport, const glm::vec4& clip) {
     float wx, wy, wz;
     viewport.to_window(clip.x, clip.y, clip.z, clip.w, wx, wy, wz);
     const float sub = float(kSubpixels);
-    return {round_like_simd(wx * sub), round_like_simd(wy * sub), wz};
+    return {int32_t(std::nearbyint(wx * sub)), int32_t(std::nearbyint(wy * sub)), wz};
 }
 
 DepthPlane DepthPlane::from(const WindowVertex& v0, const WindowVertex& v1, const WindowVertex& v2) {
