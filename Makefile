@@ -6,10 +6,12 @@
 PRESET ?= release
 JOBS   ?= $(shell nproc)
 FUZZ_SECONDS ?= 15
-# Tests that exercise threads (25): thread-count and tile-size comparisons, the rasterizer's
-# TBB stages, compute passes, Embree on the shared pool, the background frame writer, the
-# trace recorder and the raster fuzz corpus.
-TSAN_TESTS ?= Thread|Deterministic|RasterPipeline|RasterCoverage.Random|FrameWriter|MarchPass|SceneRenderer|TbbPool|FuzzRegression.Raster|SameBytes|Tiles|Trace
+# ThreadSanitizer checks the threads tessera synchronises itself: the background frame writer
+# (std::thread, mutex, condition variable). The oneTBB stages are left out: Debian's libtbb
+# is not built with -fsanitize=thread, so TSan cannot see the synchronisation inside it
+# (task spawn, waits, its small-object pool) and reports every parallel_for as a race.
+# Checking them needs oneTBB built from source with TSan (see README, "Sanitizers").
+TSAN_TESTS ?= FrameWriter
 
 .PHONY: all deps build test demo bench sanitize tsan fuzz fuzz-run clean
 
