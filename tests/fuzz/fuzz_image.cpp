@@ -10,11 +10,15 @@
 #include <fstream>
 #include <stdexcept>
 
-#if defined(__SANITIZE_ADDRESS__) || defined(__has_feature)
-#if defined(__SANITIZE_ADDRESS__) || __has_feature(address_sanitizer)
-#include <sanitizer/lsan_interface.h>
+#if defined(__SANITIZE_ADDRESS__)  // gcc -fsanitize=address
+#define TESSERA_HAVE_LSAN 1
+#elif defined(__has_feature)  // clang
+#if __has_feature(address_sanitizer)
 #define TESSERA_HAVE_LSAN 1
 #endif
+#endif
+#ifdef TESSERA_HAVE_LSAN
+#include <sanitizer/lsan_interface.h>
 #endif
 
 #include "raster/error.h"
