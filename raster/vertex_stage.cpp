@@ -25,7 +25,9 @@ uint32_t clip_code(const Viewport& viewport, float x, float y, float z, float w)
     if (!is_finite) return kClipNear | kClipFar | kClipLeft | kClipRight | kClipTop | kClipBottom | kClipInvalid;
     const float gx = viewport.guard_x * w, gy = viewport.guard_y * w;
     uint32_t code = 0;
-    if (!(-w <= z)) code |= kClipNear;
+    // w below FLT_MIN overflows 1 / w in the projection: such a vertex goes to the clipper,
+    // which drops what it cannot project (clip.cpp).
+    if (!(-w <= z) || !(w >= FLT_MIN)) code |= kClipNear;
     if (!(z <= w)) code |= kClipFar;
     if (!(-gx <= x)) code |= kClipLeft;
     if (!(x <= gx)) code |= kClipRight;
@@ -67,7 +69,7 @@ void run_vertex_stage(const Mesh& mesh, const glm::mat4& vp, const Viewport& vie
             const vfloat gx = vfloat(viewport.guard_x) * cw, gy = vfloat(viewport.guard_y) * cw;
             const vmask all(true);
             const vmask ok = finite(cx) & finite(cy) & finite(cz) & finite(cw);
-            vint code = code_bit(simd::andnot(vfloat(0.0f) - cw <= cz, all), kClipNear) |
+            vint code = code_bit(simd::andnot((vfloat(0.0f) - cw <= cz) & (vfloat(FLT_MIN) <= cw), all), kClipNear) |
                         code_bit(simd::andnot(cz <= cw, all), kClipFar) |
                         code_bit(simd::andnot(vfloat(0.0f) - gx <= cx, all), kClipLeft) |
                         code_bit(simd::andnot(cx <= gx, all), kClipRight) |

@@ -40,6 +40,14 @@ VisibilityBuffer read_tsid(const std::filesystem::path& path) {
     file >> magic >> width >> height;
     if (magic != "TSID" || width <= 0 || height <= 0 || file.get() != '\n')
         throw Error("cannot read '" + path.string() + "': not a TSID file");
+    // Check the header against the bytes present before allocating: a corrupt header must not
+    // ask for gigabytes (found by tests/fuzz/fuzz_image.cpp).
+    const std::streampos data_start = file.tellg();
+    file.seekg(0, std::ios::end);
+    const uint64_t available = uint64_t(file.tellg() - data_start);
+    file.seekg(data_start);
+    if (uint64_t(width) * uint64_t(height) * sizeof(uint32_t) > available)
+        throw Error("cannot read '" + path.string() + "': truncated");
     VisibilityBuffer v;
     v.reset(width, height);
     file.read(reinterpret_cast<char*>(v.triangle.data()), std::streamsize(v.triangle.size() * sizeof(uint32_t)));

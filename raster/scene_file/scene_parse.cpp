@@ -449,11 +449,14 @@ SceneSpec parse_scene(const std::string& json_text, const std::string& label,
     nlohmann::ordered_json doc;
     try {
         doc = nlohmann::ordered_json::parse(json_text);
-    } catch (const nlohmann::json::parse_error& e) {
-        // e.what() is "[json.exception.parse_error.101] parse error at line L, column C: ...".
+    } catch (const nlohmann::json::exception& e) {
+        // e.what() is "[json.exception.parse_error.101] parse error at line L, column C: ...",
+        // or, for a number beyond double such as 1e999, "[json.exception.out_of_range.406]
+        // number overflow parsing '1e999'" (an out_of_range, not a parse_error: issue 10).
         std::string what = e.what();
-        const size_t at = what.find("parse error");
-        throw SceneFileError(label + ": malformed JSON: " + (at == std::string::npos ? what : what.substr(at)));
+        const size_t bracket = what.find("] ");
+        if (what.rfind("[json.exception.", 0) == 0 && bracket != std::string::npos) what = what.substr(bracket + 2);
+        throw SceneFileError(label + ": malformed JSON: " + what);
     }
     const scene_file::Diagnostics diagnostics{label, &warnings};
     const JsonNode root(doc, "", diagnostics);
