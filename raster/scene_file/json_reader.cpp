@@ -24,8 +24,8 @@ void JsonNode::fail(const std::string& message) const {
 
 void JsonNode::warn(const std::string& message) const {
     if (diagnostics_->warnings)
-        diagnostics_->warnings->push_back(diagnostics_->file + ": " + (path_.empty() ? "/" : path_) +
-                                          ": " + message);
+        diagnostics_->warnings->push_back(
+            one_line_diagnostic(diagnostics_->file + ": " + (path_.empty() ? "/" : path_) + ": " + message));
 }
 
 float JsonNode::as_number() const {

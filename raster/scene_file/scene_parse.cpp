@@ -442,22 +442,46 @@ void check_references(const SceneSpec& s, const JsonNode& root) {
     }
 }
 
+// Why `text` is not JSON, as nlohmann words it without its "[json.exception.*] " prefix:
+// "parse error at line L, column C: ...", or "number overflow parsing '1e999'" for a number
+// beyond double (nlohmann's out_of_range 406). The handler stops at the first error.
+std::string json_error(const std::string& text) {
+    struct FirstError : nlohmann::json_sax<nlohmann::ordered_json> {
+        std::string message = "not valid JSON";
+        bool null() override { return true; }
+        bool boolean(bool) override { return true; }
+        bool number_integer(number_integer_t) override { return true; }
+        bool number_unsigned(number_unsigned_t) override { return true; }
+        bool number_float(number_float_t, const string_t&) override { return true; }
+        bool string(string_t&) override { return true; }
+        bool binary(binary_t&) override { return true; }
+        bool start_object(std::size_t) override { return true; }
+        bool key(string_t&) override { return true; }
+        bool end_object() override { return true; }
+        bool start_array(std::size_t) override { return true; }
+        bool end_array() override { return true; }
+        bool parse_error(std::size_t, const std::string&,
+                         const nlohmann::detail::exception& error) override {
+            message = error.what();
+            const size_t bracket = message.find("] ");
+            if (message.rfind("[json.exception.", 0) == 0 && bracket != std::string::npos)
+                message = message.substr(bracket + 2);
+            return false;
+        }
+    } handler;
+    nlohmann::ordered_json::sax_parse(text, &handler);
+    return handler.message;
+}
+
 }  // namespace
 
 SceneSpec parse_scene(const std::string& json_text, const std::string& label,
                       std::vector<std::string>& warnings) {
-    nlohmann::ordered_json doc;
-    try {
-        doc = nlohmann::ordered_json::parse(json_text);
-    } catch (const nlohmann::json::exception& e) {
-        // e.what() is "[json.exception.parse_error.101] parse error at line L, column C: ...",
-        // or, for a number beyond double such as 1e999, "[json.exception.out_of_range.406]
-        // number overflow parsing '1e999'" (an out_of_range, not a parse_error: issue 10).
-        std::string what = e.what();
-        const size_t bracket = what.find("] ");
-        if (what.rfind("[json.exception.", 0) == 0 && bracket != std::string::npos) what = what.substr(bracket + 2);
-        throw SceneFileError(label + ": malformed JSON: " + what);
-    }
+    // Parsed with exceptions off: malformed input is a return value, not a throw through
+    // nlohmann's parser (a clang build once terminated there on "1e320" followed by a syntax
+    // error, issue 10); the message is recovered by a second, error-recording pass.
+    const nlohmann::ordered_json doc = nlohmann::ordered_json::parse(json_text, nullptr, false);
+    if (doc.is_discarded()) throw SceneFileError(label + ": malformed JSON: " + json_error(json_text));
     const scene_file::Diagnostics diagnostics{label, &warnings};
     const JsonNode root(doc, "", diagnostics);
     root.expect_object();
