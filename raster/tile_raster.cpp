@@ -142,9 +142,7 @@ inline void traverse(const TriangleSetup& t, const TileRect& tile, int tile_size
                 fill_stamps(t.depth, px0, py0, bx1, by1, tile, tile_size, sink);
                 continue;
             }
-            traverse_stamps(t.depth, lanes, px0, py0,
-                            std::min(bx + kBlock - 1, x1), std::min(by + kBlock - 1, y1), tile,
-                            tile_size, sink);
+            traverse_stamps(t.depth, lanes, px0, py0, bx1, by1, tile, tile_size, sink);
         }
     }
 }
