@@ -20,6 +20,8 @@
 #include "raster/camera.h"
 #include "raster/primitive_stage.h"
 #include "raster/rasterizer.h"
+#include "raster/reference_shading.h"
+#include "raster/stamp_shading.h"
 #include "raster/test_meshes.h"
 #include "raster/vertex_stage.h"
 
@@ -51,13 +53,15 @@ const Mesh& sphere_mesh(size_t triangles) {
     return *slot;
 }
 
-glm::mat4 sphere_camera(int w, int h) {
+Camera sphere_view(int w, int h) {
     Camera camera;
     camera.eye = {0.0f, 0.4f, 2.6f};
     camera.aspect = float(w) / float(h);
     camera.fovy_deg = 50.0f;
-    return camera.view_projection();
+    return camera;
 }
+
+glm::mat4 sphere_camera(int w, int h) { return sphere_view(w, h).view_projection(); }
 
 void BM_FillRate(benchmark::State& state) {
     const int leg = int(state.range(0));
@@ -108,6 +112,37 @@ void BM_Frame(benchmark::State& state) {
 BENCHMARK(BM_Frame)
     ->ArgNames({"ktris", "height", "threads"})
     ->ArgsProduct({{10, 100, 1000, 4000}, {1080, 2160}, {1, 2}})
+    ->Unit(benchmark::kMillisecond)
+    ->MeasureProcessCPUTime()
+    ->UseRealTime();
+
+// A whole 1080p frame of the sphere with the --shade phong pass, 1 thread: the scalar
+// reference pass (simd:0) vs the SIMD stamp pass (simd:1); the raster work is the same in both,
+// so the difference is the shading.
+void BM_FramePhong(benchmark::State& state) {
+    const Mesh& mesh = sphere_mesh(size_t(state.range(0)) * 1000);
+    const bool simd = state.range(1) != 0;
+    const int width = 1920, height = 1080;
+    tbb::global_control limit(tbb::global_control::max_allowed_parallelism, 1);
+    const Camera camera = sphere_view(width, height);
+    std::vector<uint8_t> rgb8(size_t(width) * height * 3);
+    const TilePass pass = simd ? make_stamp_shading_pass(ShadeMode::phong, camera, rgb8)
+                               : make_reference_shading_pass(ShadeMode::phong, camera, rgb8);
+    Rasterizer rasterizer;
+    VisibilityBuffer vis;
+    RasterOptions options;
+    options.cull = CullMode::back;
+    options.tile_color = !simd;  // what tessera raster does with each pass
+    const Viewport viewport(width, height);
+    rasterizer.render(mesh, camera.view_projection(), viewport, options, vis, {&pass, 1});  // warm-up
+    for (auto _ : state) {
+        rasterizer.render(mesh, camera.view_projection(), viewport, options, vis, {&pass, 1});
+        benchmark::DoNotOptimize(rgb8.data());
+    }
+}
+BENCHMARK(BM_FramePhong)
+    ->ArgNames({"ktris", "simd"})
+    ->ArgsProduct({{20, 1000}, {0, 1}})
     ->Unit(benchmark::kMillisecond)
     ->MeasureProcessCPUTime()
     ->UseRealTime();

@@ -19,6 +19,7 @@
 #include "raster/obj_loader.h"
 #include "raster/rasterizer.h"
 #include "raster/reference_shading.h"
+#include "raster/stamp_shading.h"
 #include "raster/visibility_io.h"
 
 namespace tessera::cli {
@@ -100,10 +101,11 @@ int run(const Options& o) {
     RasterOptions options;
     options.cull = cull;
     if (o.tile) options.tile_size = o.tile;
+    options.tile_color = false;  // the pass writes rgb8 itself
     Rasterizer rasterizer;
     VisibilityBuffer visibility;
     std::vector<uint8_t> rgb8(size_t(width) * height * 3);
-    const TilePass passes[] = {make_reference_shading_pass(shade, camera, rgb8)};
+    const TilePass passes[] = {make_stamp_shading_pass(shade, camera, rgb8)};
     const glm::mat4 view_projection = camera.view_projection();
 
     const int frames = std::max(1, o.repeat);

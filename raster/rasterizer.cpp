@@ -115,8 +115,10 @@ void Rasterizer::render(const Mesh& mesh, const glm::mat4& view_projection, cons
     visibility.height = viewport.height;
     visibility.triangle.resize(size_t(viewport.width) * viewport.height);
     visibility.depth.resize(size_t(viewport.width) * viewport.height);
+    if (color && !options.tile_color)
+        throw std::invalid_argument("Rasterizer::render: a colour buffer needs RasterOptions::tile_color");
     if (color) color->resize(size_t(viewport.width) * viewport.height);
-    const bool need_color = color || !passes.empty();
+    const bool run_passes = color || !passes.empty();
     std::atomic<uint64_t> visible_pixels{0};
     std::atomic<int64_t> pass_ns{0};
     tbb::parallel_for(tbb::blocked_range<int>(0, grid.count(), 1), [&](const tbb::blocked_range<int>& r) {
@@ -154,10 +156,10 @@ void Rasterizer::render(const Mesh& mesh, const glm::mat4& view_projection, cons
                     for (int x = 0; x < w; ++x) visible += visibility.triangle[row + x] != kNoTriangle;
             }
             if (stats) visible_pixels += visible;
-            if (!need_color) continue;
+            if (!run_passes) continue;
 
             const auto pass_start = Clock::now();
-            scratch.color.assign(size_t(grid.size) * grid.size, options.clear_color);
+            if (options.tile_color) scratch.color.assign(size_t(grid.size) * grid.size, options.clear_color);
             TileWork work{&s.chunks, tile, &scratch.fragments};
             TileContext context;
             context.rect = rect;
@@ -168,7 +170,7 @@ void Rasterizer::render(const Mesh& mesh, const glm::mat4& view_projection, cons
             context.triangle = visibility.triangle.data() + origin;
             context.depth = visibility.depth.data() + origin;
             context.stride = size_t(viewport.width);
-            context.color = scratch.color.data();
+            context.color = options.tile_color ? scratch.color.data() : nullptr;
             context.color_stride = size_t(grid.size);
             context.work = &work;
             for (const TilePass& pass : passes) pass(context);

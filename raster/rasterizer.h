@@ -41,6 +41,9 @@ struct RasterOptions {
     int tile_size = 128;                   // pixels, power of two in 16 .. 256 (128: measured best)
     std::span<const uint8_t> transparent;  // empty, or one flag per triangle (nonzero: transparent)
     glm::vec4 clear_color{0.0f, 0.0f, 0.0f, 0.0f};
+    // false: the passes write their own output and get no colour tile (TileContext::color is
+    // null), which saves clearing 16 bytes per pixel per frame; render() then takes no colour.
+    bool tile_color = true;
 };
 
 // Counts and per-stage wall times of one render (times in milliseconds).

@@ -18,18 +18,15 @@ ShadeMode parse_shade_mode(const std::string& text) {
     throw std::invalid_argument("--shade expects id, depth, normal or phong, got '" + text + "'");
 }
 
-namespace {
+PhongLight PhongLight::from(const Camera& camera) {
+    const float d = glm::length(camera.lookat - camera.eye);
+    const glm::vec3 fwd = (camera.lookat - camera.eye) / d;
+    const glm::vec3 right = glm::normalize(glm::cross(fwd, camera.up));
+    const glm::vec3 up2 = glm::cross(right, fwd);
+    return {camera.eye, camera.eye + right * (0.4f * d) + up2 * (0.5f * d) + fwd * (0.2f * d)};
+}
 
-// Everything per triangle that a pixel needs: its barycentrics and its vertex attributes.
-struct TriangleAttributes {
-    uint32_t id = kNoTriangle;
-    PerspectiveBarycentrics barycentrics;
-    glm::vec3 position[3]{};
-    glm::vec3 normal[3]{};
-    glm::vec2 uv[3]{};
-};
-
-void fetch(const TileContext& ctx, uint32_t id, TriangleAttributes& t) {
+void fetch_triangle_attributes(const TileContext& ctx, uint32_t id, TriangleAttributes& t) {
     const Mesh& mesh = *ctx.mesh;
     const uint32_t* index = &mesh.indices[3 * size_t(id)];
     t.id = id;
@@ -46,7 +43,9 @@ void fetch(const TileContext& ctx, uint32_t id, TriangleAttributes& t) {
     for (int k = 0; k < 3; ++k) t.uv[k] = mesh.uvs.empty() ? glm::vec2(0.0f) : mesh.uvs[index[k]];
 }
 
-uint8_t quantise(float c) { return uint8_t(std::floor(std::clamp(c, 0.0f, 1.0f) * 255.0f + 0.5f)); }
+uint32_t id_colour(uint32_t id) { return procedural::hash(0x7e55e7a, int32_t(id)); }
+
+namespace {
 
 glm::vec3 safe_normalize(glm::vec3 v) {
     const float length = glm::length(v);
@@ -56,12 +55,8 @@ glm::vec3 safe_normalize(glm::vec3 v) {
 }  // namespace
 
 TilePass make_reference_shading_pass(ShadeMode mode, const Camera& camera, std::vector<uint8_t>& rgb8) {
-    const glm::vec3 eye = camera.eye;
-    const float d = glm::length(camera.lookat - camera.eye);
-    const glm::vec3 fwd = (camera.lookat - camera.eye) / d;
-    const glm::vec3 right = glm::normalize(glm::cross(fwd, camera.up));
-    const glm::vec3 up2 = glm::cross(right, fwd);
-    const glm::vec3 light = eye + right * (0.4f * d) + up2 * (0.5f * d) + fwd * (0.2f * d);
+    const PhongLight phong = PhongLight::from(camera);
+    const glm::vec3 eye = phong.eye, light = phong.light;
     return [mode, eye, light, &rgb8](const TileContext& ctx) {
         TriangleAttributes t;
         const int width = ctx.viewport->width;
@@ -72,12 +67,12 @@ TilePass make_reference_shading_pass(ShadeMode mode, const Camera& camera, std::
                 glm::vec3 c(0.0f);
                 if (id != kNoTriangle) {
                     if (mode == ShadeMode::id) {
-                        const uint32_t h = procedural::hash(0x7e55e7a, int32_t(id));
+                        const uint32_t h = id_colour(id);
                         c = glm::vec3(float(h & 255), float((h >> 8) & 255), float((h >> 16) & 255)) / 255.0f;
                     } else if (mode == ShadeMode::depth) {
                         c = glm::vec3(ctx.depth[i]);
                     } else {
-                        if (t.id != id) fetch(ctx, id, t);
+                        if (t.id != id) fetch_triangle_attributes(ctx, id, t);
                         float l[3];
                         t.barycentrics.at(float(x) + 0.5f, float(y) + 0.5f, l[0], l[1], l[2]);
                         const glm::vec3 n = safe_normalize(l[0] * t.normal[0] + l[1] * t.normal[1] + l[2] * t.normal[2]);
@@ -99,7 +94,8 @@ TilePass make_reference_shading_pass(ShadeMode mode, const Camera& camera, std::
                         }
                     }
                 }
-                ctx.color[size_t(y - ctx.rect.y0) * ctx.color_stride + size_t(x - ctx.rect.x0)] = glm::vec4(c, 1.0f);
+                if (ctx.color)
+                    ctx.color[size_t(y - ctx.rect.y0) * ctx.color_stride + size_t(x - ctx.rect.x0)] = glm::vec4(c, 1.0f);
                 uint8_t* out = &rgb8[(size_t(y) * width + x) * 3];
                 out[0] = quantise(c.r);
                 out[1] = quantise(c.g);

@@ -14,13 +14,17 @@
 // Background (no triangle): black. id: a hash colour per triangle id; depth: grey = window
 // depth; normal: N*0.5 + 0.5 (interpolated or face normal, not flipped).
 #pragma once
+#include <algorithm>
+#include <cmath>
 #include <cstdint>
 #include <string>
 #include <vector>
 
+#include "raster/barycentrics.h"
 #include "raster/camera.h"
 #include "raster/mesh.h"
 #include "raster/tile_pass.h"
+#include "raster/visibility.h"
 
 namespace tessera {
 
@@ -29,8 +33,36 @@ enum class ShadeMode { id, depth, normal, phong };
 // Parses "id" | "depth" | "normal" | "phong"; throws std::invalid_argument otherwise.
 ShadeMode parse_shade_mode(const std::string& text);
 
-// A tile pass that shades every pixel of the tile into ctx.color (linear RGBA, alpha 1) and
-// into `rgb8` (width*height*3 bytes, rows top to bottom, resized by the caller).
+// A tile pass that shades every pixel of the tile into ctx.color (linear RGBA, alpha 1; skipped
+// when the rasterizer gives no colour tile) and into `rgb8` (width*height*3 bytes, rows top to
+// bottom, resized by the caller). The scalar definition that the SIMD pass (stamp_shading.h)
+// is tested against.
 TilePass make_reference_shading_pass(ShadeMode mode, const Camera& camera, std::vector<uint8_t>& rgb8);
+
+// What both shading passes share, so that they read the same inputs bit for bit.
+
+// The eye and the point light of --shade phong for `camera`.
+struct PhongLight {
+    glm::vec3 eye{0.0f}, light{0.0f};
+    static PhongLight from(const Camera& camera);
+};
+
+// Everything per triangle that a pixel needs: its barycentrics and its vertex attributes.
+struct TriangleAttributes {
+    uint32_t id = kNoTriangle;
+    PerspectiveBarycentrics barycentrics;
+    glm::vec3 position[3]{};
+    glm::vec3 normal[3]{};  // the face normal three times when the mesh has none
+    glm::vec2 uv[3]{};      // (0, 0) when the mesh has none
+};
+void fetch_triangle_attributes(const TileContext& ctx, uint32_t id, TriangleAttributes& t);
+
+// --shade id: the colour of a triangle id, 8 bits per channel.
+uint32_t id_colour(uint32_t id);
+
+// round(clamp(c, 0, 1) * 255) as floor(x * 255 + 0.5).
+inline uint8_t quantise(float c) {
+    return uint8_t(std::floor(std::min(std::max(c, 0.0f), 1.0f) * 255.0f + 0.5f));
+}
 
 }  // namespace tessera

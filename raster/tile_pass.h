@@ -36,6 +36,7 @@ struct TileContext {
 
     // Linear RGBA colour of the tile, row-major with `color_stride` elements per row, cleared
     // to RasterOptions::clear_color; copied to the frame's colour buffer after the last pass.
+    // Null when RasterOptions::tile_color is false.
     glm::vec4* color = nullptr;
     size_t color_stride = 0;
 

@@ -70,6 +70,7 @@ inline vfloat select(vmask m, vfloat a, vfloat b) {
 }
 inline vfloat to_float(vint a) { return _mm256_cvtepi32_ps(a.v); }
 inline vfloat sqrt(vfloat a) { return _mm256_sqrt_ps(a.v); }
+inline vfloat floor(vfloat a) { return _mm256_floor_ps(a.v); }
 inline vint round_to_int(vfloat a) { return _mm256_cvtps_epi32(a.v); }  // nearest even
 inline vfloat gather(const float* base, vint index) { return _mm256_i32gather_ps(base, index.v, 4); }
 

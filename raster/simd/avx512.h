@@ -70,6 +70,9 @@ inline vmask operator<=(vfloat a, vfloat b) { return vmask(_mm512_cmp_ps_mask(a.
 inline vfloat select(vmask m, vfloat a, vfloat b) { return _mm512_mask_blend_ps(m.m, b.v, a.v); }
 inline vfloat to_float(vint a) { return _mm512_mask_cvtepi32_ps(_mm512_setzero_ps(), kAllLanes, a.v); }
 inline vfloat sqrt(vfloat a) { return _mm512_mask_sqrt_ps(a.v, kAllLanes, a.v); }
+inline vfloat floor(vfloat a) {
+    return _mm512_mask_roundscale_ps(a.v, kAllLanes, a.v, _MM_FROUND_TO_NEG_INF | _MM_FROUND_NO_EXC);
+}
 inline vint round_to_int(vfloat a) {  // nearest even
     return _mm512_mask_cvtps_epi32(_mm512_setzero_si512(), kAllLanes, a.v);
 }

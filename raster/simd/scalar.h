@@ -60,6 +60,7 @@ inline vmask operator<=(vfloat a, vfloat b) { return vmask(a.v <= b.v); }
 inline vfloat select(vmask m, vfloat a, vfloat b) { return m.m ? a : b; }
 inline vfloat to_float(vint a) { return float(a.v); }
 inline vfloat sqrt(vfloat a) { return std::sqrt(a.v); }
+inline vfloat floor(vfloat a) { return std::floor(a.v); }
 // Round to nearest, ties to even (the default rounding mode, like cvtps2dq).
 inline vint round_to_int(vfloat a) { return vint(int32_t(std::nearbyint(a.v))); }
 inline vfloat gather(const float* base, vint index) { return base[index.v]; }
