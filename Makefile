@@ -18,7 +18,7 @@ SANITIZE_EXCLUDE ?= RasterPipeline.DeterministicAcrossThreadsAndTileSizes|Shadin
 # Checking them needs oneTBB built from source with TSan (see README, "Sanitizers").
 TSAN_TESTS ?= FrameWriter
 
-.PHONY: all deps build test demo bench sanitize tsan fuzz fuzz-run clean
+.PHONY: all deps build test demo bench bench-report peer sanitize tsan fuzz fuzz-run clean
 
 all: build
 
@@ -37,6 +37,14 @@ demo: build
 
 bench: build
 	bash scripts/bench.sh
+
+# Tables and plots from the newest bench/results/<stamp>/ (or RESULTS=DIR).
+bench-report:
+	python3 scripts/bench-report.py $(RESULTS)
+
+# tessera vs Mesa llvmpipe on the same workloads (PEER_ARGS, e.g. --workload sphere-1m --cpu).
+peer: build
+	bash scripts/peer.sh $(PEER_ARGS)
 
 sanitize: deps
 	cmake --preset sanitize
