@@ -218,8 +218,7 @@ int run_heightfield(const Options& o) {
     if (o.erode > 0) {
         tp::ThermalErosion erosion;
         erosion.iterations = o.erode;
-        erosion.boundary = params.tileable && params.relief == tp::Relief::fbm ? tp::Boundary::periodic
-                                                                                : tp::Boundary::clamped;
+        erosion.boundary = params.tileable ? tp::Boundary::periodic : tp::Boundary::clamped;
         tp::erode_thermal(heights, erosion);
     }
     if (float_format(o.out)) {
@@ -299,7 +298,7 @@ Run define_generate(CLI::App& root) {
     hf->add_option("--relief", o->relief, "fbm, ridged, warped or dunes")
         ->check(CLI::IsMember({"fbm", "ridged", "warped", "dunes"}))
         ->default_val("fbm");
-    hf->add_flag("--no-tile", o->no_tile, "fbm without the periodic lattice");
+    hf->add_flag("--no-tile", o->no_tile, "a map that does not wrap (no periodic lattice or snapped dune waves)");
     hf->add_option("--erode", o->erode, "thermal erosion iterations (Olsen 2004)")
         ->check(CLI::Range(0, 100000))
         ->default_val(0);

@@ -14,6 +14,7 @@
 #include <cstddef>
 #include <cstdint>
 
+#include "procedural/dunes.h"
 #include "procedural/fractal.h"
 #include "procedural/simd_math.h"
 

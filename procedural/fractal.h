@@ -1,5 +1,5 @@
-// Fractal sums of noise with exact gradients: fBm, ridged multifractal, domain warping, and the
-// anisotropic dune relief for the snake scene's sand. Each returns the value and its gradient
+// Fractal sums of noise with exact gradients: fBm, ridged multifractal and domain warping, each
+// on an unbounded or a repeating (tileable) lattice. Each returns the value and its gradient
 // by the chain rule (octave i is sampled at p * lacunarity^i, so its gradient is scaled by
 // lacunarity^i; a warped field is multiplied by the warp's Jacobian).
 #pragma once
@@ -31,37 +31,47 @@ inline float fractal_amplitude(const Fractal& f) {
     return sum;
 }
 
-// fBm of 2-D value noise, in [-1, 1].
-TESSERA_NOISE_INLINE Noise2 fbm(glm::vec2 p, const Fractal& f) {
+// Where the octaves' lattices live. OpenLattice: the unbounded plane. TorusLattice: a lattice
+// that repeats every `period` cells, so a texture covering `period` cells of octave 0 wraps
+// seamlessly; octave i is sampled at p * lacunarity^i, so with a whole-number lacunarity its
+// lattice repeats every period * lacunarity^i of its own cells (finer()), the same distance in
+// input units, and the whole sum wraps.
+struct OpenLattice {
+    Noise2 value(glm::vec2 p, uint32_t seed) const { return value_noise(p, seed); }
+    Noise2 gradient(glm::vec2 p, uint32_t seed) const { return gradient_noise(p, seed); }
+    OpenLattice finer(int) const { return *this; }
+};
+
+struct TorusLattice {
+    glm::ivec2 period;  // cells, > 0 on both axes
+    Noise2 value(glm::vec2 p, uint32_t seed) const { return value_noise_periodic(p, period, seed); }
+    Noise2 gradient(glm::vec2 p, uint32_t seed) const { return gradient_noise_periodic(p, period, seed); }
+    TorusLattice finer(int lacunarity) const { return {period * lacunarity}; }
+};
+
+// fBm of 2-D value noise, in [-1, 1], on the given lattice (a TorusLattice needs a whole-number
+// lacunarity).
+template <class Lattice>
+TESSERA_NOISE_INLINE Noise2 fbm(glm::vec2 p, const Fractal& f, Lattice lattice) {
     float value = 0.0f, amplitude = 1.0f, frequency = 1.0f;
     glm::vec2 gradient(0.0f);
     for (int i = 0; i < f.octaves; ++i) {
-        const Noise2 n = value_noise(p * frequency, octave_seed(f.seed, i));
+        const Noise2 n = lattice.value(p * frequency, octave_seed(f.seed, i));
         value += amplitude * n.value;
         gradient += (amplitude * frequency) * n.gradient;
         amplitude *= f.gain;
         frequency *= f.lacunarity;
+        lattice = lattice.finer(int(f.lacunarity));
     }
     const float norm = 1.0f / fractal_amplitude(f);
     return {value * norm, gradient * norm};
 }
 
-// Tileable fBm: octave i's lattice repeats every period * lacunarity^i cells, so a texture that
-// covers `period` cells of octave 0 wraps seamlessly. The lacunarity must be a whole number.
+TESSERA_NOISE_INLINE Noise2 fbm(glm::vec2 p, const Fractal& f) { return fbm(p, f, OpenLattice{}); }
+
+// Tileable fBm: wraps every `period` octave-0 cells. The lacunarity must be a whole number.
 TESSERA_NOISE_INLINE Noise2 fbm_periodic(glm::vec2 p, glm::ivec2 period, const Fractal& f) {
-    float value = 0.0f, amplitude = 1.0f, frequency = 1.0f;
-    glm::vec2 gradient(0.0f);
-    const int lacunarity = int(f.lacunarity);
-    for (int i = 0; i < f.octaves; ++i) {
-        const Noise2 n = value_noise_periodic(p * frequency, period, octave_seed(f.seed, i));
-        value += amplitude * n.value;
-        gradient += (amplitude * frequency) * n.gradient;
-        amplitude *= f.gain;
-        frequency *= float(lacunarity);
-        period *= lacunarity;
-    }
-    const float norm = 1.0f / fractal_amplitude(f);
-    return {value * norm, gradient * norm};
+    return fbm(p, f, TorusLattice{period});
 }
 
 // fBm of 3-D value noise, in [-1, 1] (volumes with overhangs; fog density).
@@ -83,13 +93,15 @@ TESSERA_NOISE_INLINE Noise3 fbm(glm::vec3 p, const Fractal& f) {
 // octave's signal so that ridges get sharp detail and valleys stay smooth. In [0, 1] for
 // offset = 1. It folds gradient noise: the zero lines of value noise run along the lattice axes
 // and would make the ridges a grid. The gradient carries the weight's dependence on the previous octave; it is
-// undefined exactly on a crest (|noise| = 0), like the surface's own crease.
-TESSERA_NOISE_INLINE Noise2 ridged(glm::vec2 p, const Fractal& f, float offset = 1.0f) {
+// undefined exactly on a crest (|noise| = 0), like the surface's own crease. Each octave's ridge
+// depends only on that octave's noise at the point, so on a TorusLattice the sum wraps too.
+template <class Lattice>
+TESSERA_NOISE_INLINE Noise2 ridged(glm::vec2 p, const Fractal& f, Lattice lattice, float offset = 1.0f) {
     float value = 0.0f, amplitude = 1.0f, frequency = 1.0f;
     float weight = 1.0f;
     glm::vec2 gradient(0.0f), weight_gradient(0.0f);
     for (int i = 0; i < f.octaves; ++i) {
-        const Noise2 n = gradient_noise(p * frequency, octave_seed(f.seed, i));
+        const Noise2 n = lattice.gradient(p * frequency, octave_seed(f.seed, i));
         const float ridge = offset - (n.value < 0.0f ? -n.value : n.value);
         const glm::vec2 ridge_gradient = (n.value < 0.0f ? frequency : -frequency) * n.gradient;
         const float signal = ridge * ridge * weight;
@@ -104,76 +116,32 @@ TESSERA_NOISE_INLINE Noise2 ridged(glm::vec2 p, const Fractal& f, float offset =
         weight_gradient = inside ? 2.0f * signal_gradient : glm::vec2(0.0f);
         amplitude *= f.gain;
         frequency *= f.lacunarity;
+        lattice = lattice.finer(int(f.lacunarity));
     }
     const float norm = 1.0f / fractal_amplitude(f);
     return {value * norm, gradient * norm};
 }
 
+TESSERA_NOISE_INLINE Noise2 ridged(glm::vec2 p, const Fractal& f, float offset = 1.0f) {
+    return ridged(p, f, OpenLattice{}, offset);
+}
+
 // Domain warping (Quilez, "warp"): h(p) = fbm(p + amount * q(p)) with q two independent fBm
-// fields. The gradient is J^T grad h, J = I + amount * dq/dp.
-TESSERA_NOISE_INLINE Noise2 domain_warp(glm::vec2 p, const Fractal& f, float amount) {
+// fields. The gradient is J^T grad h, J = I + amount * dq/dp. On a TorusLattice q and h both
+// wrap, so p + period lands on the same warped point plus a period: the warp wraps too.
+template <class Lattice>
+TESSERA_NOISE_INLINE Noise2 domain_warp(glm::vec2 p, const Fractal& f, float amount, Lattice lattice) {
     Fractal fx = f, fy = f;
     fx.seed = f.seed ^ 0x51ed270bu;
     fy.seed = f.seed ^ 0x2c1b3c6du;
-    const Noise2 qx = fbm(p, fx);
-    const Noise2 qy = fbm(p + glm::vec2(5.2f, 1.3f), fy);
-    const Noise2 h = fbm(p + amount * glm::vec2(qx.value, qy.value), f);
+    const Noise2 qx = fbm(p, fx, lattice);
+    const Noise2 qy = fbm(p + glm::vec2(5.2f, 1.3f), fy, lattice);
+    const Noise2 h = fbm(p + amount * glm::vec2(qx.value, qy.value), f, lattice);
     return {h.value, h.gradient + amount * (h.gradient.x * qx.gradient + h.gradient.y * qy.gradient)};
 }
 
-// Wind-blown sand: transverse dunes whose crests run across the wind, with a gentle windward
-// slope and a steep lee face, sinuous crests (the phase is warped by noise), crest heights
-// that vary along the crest, and small ripples. Heights in about [0, 1 + ripple_amplitude].
-struct Dunes {
-    glm::vec2 wind{1.0f, 0.0f};      // unit direction the wind blows towards
-    float wavelength = 1.0f;         // crest spacing, in input units
-    float lee_fraction = 0.25f;      // share of a wavelength taken by the steep lee face
-    float sinuosity = 0.35f;         // crest bending, in wavelengths
-    float ripple_wavelength = 0.06f; // wind ripples on top, in input units
-    float ripple_amplitude = 0.02f;
-    uint32_t seed = 0;
-};
-
-namespace dune_detail {
-// Asymmetric periodic profile: smootherstep (6x^5 - 15x^4 + 10x^3) up over [0, a), down over
-// [a, 1); C2 at the crest and trough (no shading seams), value in [0, 1], and its derivative
-// with respect to the phase.
-TESSERA_NOISE_INLINE void profile(float phase, float a, float& value, float& slope) {
-    const float t = phase - float(floor_int(phase));
-    const bool rising = t < a;
-    const float span = rising ? a : 1.0f - a;
-    const float x = rising ? t / a : (t - a) / (1.0f - a);
-    const float s = x * x * x * (x * (x * 6.0f - 15.0f) + 10.0f);
-    const float ds = 30.0f * x * x * (1.0f - x) * (1.0f - x) / span;
-    value = rising ? s : 1.0f - s;
-    slope = rising ? ds : -ds;
-}
-}  // namespace dune_detail
-
-TESSERA_NOISE_INLINE Noise2 dunes(glm::vec2 p, const Dunes& d) {
-    const Fractal bend{3, 2.0f, 0.5f, d.seed};
-    const Fractal crest{2, 2.0f, 0.5f, d.seed ^ 0x7f4a7c15u};
-    const float inv_wavelength = 1.0f / d.wavelength;
-    // Noise is sampled in wavelength units so sinuosity and crest variation scale with it.
-    const glm::vec2 q = p * inv_wavelength;
-    const Noise2 warp = fbm(q * 0.5f, bend);
-    const float phase = (d.wind.x * p.x + d.wind.y * p.y) * inv_wavelength + d.sinuosity * warp.value;
-    const glm::vec2 phase_gradient =
-        d.wind * inv_wavelength + (d.sinuosity * 0.5f * inv_wavelength) * warp.gradient;
-    float shape, shape_slope;
-    dune_detail::profile(phase, 1.0f - d.lee_fraction, shape, shape_slope);
-    const Noise2 height = fbm(q * 0.7f, crest);
-    const float scale = 0.75f + 0.25f * height.value;
-    const glm::vec2 scale_gradient = (0.25f * 0.7f * inv_wavelength) * height.gradient;
-
-    // Ripples: the same asymmetric profile at a short wavelength, straight across the wind.
-    const float inv_ripple = 1.0f / d.ripple_wavelength;
-    float ripple, ripple_slope;
-    dune_detail::profile((d.wind.x * p.x + d.wind.y * p.y) * inv_ripple, 0.7f, ripple, ripple_slope);
-
-    return {shape * scale + d.ripple_amplitude * ripple,
-            (shape_slope * scale) * phase_gradient + shape * scale_gradient +
-                (d.ripple_amplitude * ripple_slope * inv_ripple) * d.wind};
+TESSERA_NOISE_INLINE Noise2 domain_warp(glm::vec2 p, const Fractal& f, float amount) {
+    return domain_warp(p, f, amount, OpenLattice{});
 }
 
 }  // namespace tessera::procedural

@@ -21,10 +21,27 @@ void check(const HeightfieldParams& p) {
         !(p.fractal.lacunarity >= 1.0f && p.fractal.lacunarity <= 16.0f))
         throw std::invalid_argument("heightfield gain must be in (0, 1) and lacunarity in [1, 16]");
     if (p.cells < 1 || p.cells > 1 << 20) throw std::invalid_argument("heightfield cells must be >= 1");
-    if (p.tileable && p.relief == Relief::fbm && p.fractal.lacunarity != std::floor(p.fractal.lacunarity))
+    if (p.tileable && p.relief != Relief::dunes && p.fractal.lacunarity != std::floor(p.fractal.lacunarity))
         throw std::invalid_argument("a tileable heightfield needs a whole-number lacunarity");
-    if (!std::isfinite(p.warp) || !(p.dunes.wavelength > 0.0f))
-        throw std::invalid_argument("heightfield warp must be finite and dune wavelength positive");
+    if (!std::isfinite(p.warp) || !(p.dunes.wavelength > 0.0f) || !(p.dunes.ripple_wavelength > 0.0f))
+        throw std::invalid_argument("heightfield warp must be finite and dune wavelengths positive");
+}
+
+// One row of the ridged, warped or dune relief at lattice rows v, columns xs: one scalar call
+// per texel (these sums do not vectorise the way fbm_batch does). The lattice and the dune waves
+// are either both open or both repeating over the map.
+template <class Lattice>
+void relief_row(const HeightfieldParams& p, Lattice lattice, const DuneWaves<Lattice>& waves,
+                int width, const float* xs, float v, float* h) {
+    for (int x = 0; x < width; ++x) {
+        const glm::vec2 q(xs[x], v);
+        switch (p.relief) {
+            case Relief::ridged: h[x] = ridged(q, p.fractal, lattice).value; break;
+            case Relief::warped: h[x] = 0.5f * domain_warp(q, p.fractal, p.warp, lattice).value + 0.5f; break;
+            case Relief::dunes: h[x] = dunes(q, p.dunes, waves).value; break;
+            case Relief::fbm: break;
+        }
+    }
 }
 }  // namespace
 
@@ -36,6 +53,10 @@ Grid generate_heightfield(int width, int height, const HeightfieldParams& p) {
     // whole number of cells so that a tileable map also wraps vertically.
     const int cells_y = std::max(1, int(std::lround(double(p.cells) * height / width)));
     const float sx = float(p.cells) / float(width), sy = float(cells_y) / float(height);
+    // A tileable map repeats every cells x cells_y lattice units: the map's own extent.
+    const glm::ivec2 period(p.cells, cells_y);
+    const DuneWaves<TorusLattice> tiled_waves = dune_waves(p.dunes, period);
+    const DuneWaves<OpenLattice> open_waves = dune_waves(p.dunes);
     tbb::parallel_for(tbb::blocked_range<int>(0, height, 4), [&](const tbb::blocked_range<int>& rows) {
         std::vector<float> xs(width), ys(width), dx(width), dy(width);
         for (int x = 0; x < width; ++x) xs[x] = float(x) * sx;
@@ -45,22 +66,17 @@ Grid generate_heightfield(int width, int height, const HeightfieldParams& p) {
             if (p.relief == Relief::fbm) {
                 std::fill(ys.begin(), ys.end(), v);
                 if (p.tileable)
-                    fbm_periodic_batch(p.fractal, {p.cells, cells_y}, 1.0f, width, xs.data(),
+                    fbm_periodic_batch(p.fractal, period, 1.0f, width, xs.data(),
                                        ys.data(), h, dx.data(), dy.data());
                 else
                     fbm_batch(p.fractal, 1.0f, width, xs.data(), ys.data(), h, dx.data(), dy.data());
                 for (int x = 0; x < width; ++x) h[x] = 0.5f * h[x] + 0.5f;
                 continue;
             }
-            for (int x = 0; x < width; ++x) {
-                const glm::vec2 q(xs[x], v);
-                switch (p.relief) {
-                    case Relief::ridged: h[x] = ridged(q, p.fractal).value; break;
-                    case Relief::warped: h[x] = 0.5f * domain_warp(q, p.fractal, p.warp).value + 0.5f; break;
-                    case Relief::dunes: h[x] = dunes(q, p.dunes).value; break;
-                    case Relief::fbm: break;
-                }
-            }
+            if (p.tileable)
+                relief_row(p, TorusLattice{period}, tiled_waves, width, xs.data(), v, h);
+            else
+                relief_row(p, OpenLattice{}, open_waves, width, xs.data(), v, h);
         }
     });
     return out;

@@ -82,5 +82,18 @@ if command -v oiiotool >/dev/null; then
   stats=$(oiiotool --stats "$dir/flat_n.png")
   grep -q "Min: 128 128 255" <<<"$stats" && grep -q "Max: 128 128 255" <<<"$stats" \
     || fail "flat height map should give (128,128,255): $stats"
+  # A tileable dune map wraps: the step from its last column to its first is no larger than the
+  # steps between neighbouring columns inside (an untiled map jumps about 3x further there).
+  "$tessera" generate heightfield --size 128x128 --relief dunes --out "$dir/dunes.exr" >/dev/null \
+    || fail "dune heightfield exited $?"
+  read -r inner wrap < <(oiiotool --dumpdata "$dir/dunes.exr" | awk '
+    $1 == "Pixel" { x = $2; y = $3; gsub(/[^0-9]/, "", x); gsub(/[^0-9]/, "", y); v[x, y] = $4
+                    if (x + 0 > w) w = x + 0; if (y + 0 > h) h = y + 0 }
+    END { for (y = 0; y <= h; ++y) {
+            for (x = 0; x < w; ++x) { d = v[x + 1, y] - v[x, y]; if (d < 0) d = -d; if (d > inner) inner = d }
+            d = v[0, y] - v[w, y]; if (d < 0) d = -d; if (d > wrap) wrap = d }
+          print inner, wrap }')
+  awk -v i="$inner" -v w="$wrap" 'BEGIN { exit !(i > 0 && w <= 1.2 * i) }' \
+    || fail "dune heightfield does not tile: step $wrap across the wrap, at most $inner inside"
 fi
 echo "cli_generate: ok"

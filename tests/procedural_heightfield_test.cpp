@@ -42,6 +42,44 @@ TEST(ProceduralHeightfield, RowsMatchScalarFbmAndTile) {
     }
 }
 
+// Every relief of a tileable map: texels are the scalar relief on the map's repeating lattice,
+// and that relief one period past the right (bottom) edge is column (row) 0 again, so repeats
+// of the texture meet without a seam. A diagonal wind makes the dune waves snap on both axes.
+TEST(ProceduralHeightfield, EveryReliefTiles) {
+    const int w = 96, h = 64;  // cells 3 -> cells_y = 2
+    const glm::ivec2 period(3, 2);
+    const float sx = 3.0f / w, sy = 2.0f / h;
+    for (tp::Relief relief : {tp::Relief::fbm, tp::Relief::ridged, tp::Relief::warped, tp::Relief::dunes}) {
+        tp::HeightfieldParams p;
+        p.relief = relief;
+        p.fractal = {5, 2.0f, 0.5f, 23};
+        p.cells = 3;
+        p.dunes.wind = glm::vec2(0.8f, 0.6f);
+        p.dunes.wavelength = 0.7f;
+        p.dunes.ripple_wavelength = 0.11f;
+        p.dunes.seed = 23;
+        const tp::Grid g = tp::generate_heightfield(w, h, p);
+        const tp::TorusLattice lattice{period};
+        const tp::DuneWaves<tp::TorusLattice> waves = tp::dune_waves(p.dunes, period);
+        auto at = [&](float x, float y) {
+            const glm::vec2 q(x * sx, y * sy);
+            switch (relief) {
+                case tp::Relief::fbm: return 0.5f * tp::fbm(q, p.fractal, lattice).value + 0.5f;
+                case tp::Relief::ridged: return tp::ridged(q, p.fractal, lattice).value;
+                case tp::Relief::warped: return 0.5f * tp::domain_warp(q, p.fractal, p.warp, lattice).value + 0.5f;
+                case tp::Relief::dunes: return tp::dunes(q, p.dunes, waves).value;
+            }
+            return 0.0f;
+        };
+        for (int y = 0; y < h; y += 5)
+            for (int x = 0; x < w; x += 7) ASSERT_NEAR(g.at(x, y), at(x, y), 1e-5f) << int(relief);
+        float seam = 0.0f;
+        for (int y = 0; y < h; ++y) seam = std::max(seam, std::abs(at(w, y) - g.at(0, y)));
+        for (int x = 0; x < w; ++x) seam = std::max(seam, std::abs(at(x, h) - g.at(x, 0)));
+        EXPECT_LT(seam, 1e-4f) << "relief " << int(relief) << " does not wrap";
+    }
+}
+
 TEST(ProceduralHeightfield, IdenticalForOneAndTwoThreads) {
     for (tp::Relief relief : {tp::Relief::fbm, tp::Relief::ridged, tp::Relief::warped, tp::Relief::dunes}) {
         tp::HeightfieldParams p;

@@ -129,6 +129,10 @@ TEST(ProceduralNoise, FractalGradientsMatchFiniteDifferences) {
     dunes.ripple_wavelength = 0.3f;
     dunes.wind = glm::vec2(0.6f, 0.8f);
     check_gradient2([&](glm::vec2 p) { return tp::dunes(p, dunes); }, 8, "dunes");
+    const tp::DuneWaves<tp::TorusLattice> tiled = tp::dune_waves(dunes, {5, 3});
+    check_gradient2([&](glm::vec2 p) { return tp::dunes(p, dunes, tiled); }, 8, "dunes tiled");
+    check_gradient2([&](glm::vec2 p) { return tp::domain_warp(p, f, 0.8f, tp::TorusLattice{{3, 4}}); }, 8,
+                    "domain warp periodic", 2000, 1e-2f);
     check_gradient3([&](glm::vec3 p) { return tp::fbm(p, f); }, 8, "fbm3");
 }
 
@@ -159,6 +163,25 @@ TEST(ProceduralNoise, RidgedGradientMatchesAwayFromCreases) {
     EXPECT_LT(mismatched, checked * 3 / 100);
 }
 
+// Tiled dune waves: whole numbers of crests and ripples across the tile on each axis, nearest to
+// the requested wave vector; a wave longer than the tile becomes one wave across it; the noise
+// lattices get whole cell counts of at least 2 per tile.
+TEST(ProceduralNoise, TiledDuneWavesFitTheTile) {
+    tp::Dunes d;
+    d.wind = glm::vec2(0.8f, 0.6f);
+    d.wavelength = 1.0f;
+    d.ripple_wavelength = 0.06f;
+    const tp::DuneWaves<tp::TorusLattice> w = tp::dune_waves(d, {4, 4});
+    EXPECT_EQ(w.crest, glm::vec2(3.0f / 4, 2.0f / 4));      // (3.2, 2.4) waves -> (3, 2)
+    EXPECT_EQ(w.ripple, glm::vec2(53.0f / 4, 40.0f / 4));   // (53.3, 40) -> (53, 40)
+    EXPECT_EQ(w.bend_lattice.period, glm::ivec2(2, 2));     // 0.5 cells per unit * 4 = 2
+    EXPECT_EQ(w.height_lattice.period, glm::ivec2(3, 3));   // 0.7 * 4 = 2.8 -> 3
+    EXPECT_EQ(w.height_scale, glm::vec2(0.75f));
+    d.wavelength = 20.0f;
+    d.wind = glm::vec2(0.0f, -1.0f);
+    EXPECT_EQ(tp::dune_waves(d, {4, 2}).crest, glm::vec2(0.0f, -0.5f));
+}
+
 TEST(ProceduralNoise, PeriodicNoiseTiles) {
     const glm::ivec2 period(6, 4);
     const tp::Fractal f{4, 2.0f, 0.5f, 9};
@@ -171,6 +194,26 @@ TEST(ProceduralNoise, PeriodicNoiseTiles) {
         EXPECT_NEAR(a.value, c.value, 1e-5f);
         EXPECT_NEAR(a.gradient.x, b.gradient.x, 1e-3f);
     }
+    // Ridged, warped and dune relief on repeating lattices wrap the same way, gradients too.
+    const tp::TorusLattice lattice{period};
+    tp::Dunes d;
+    d.wind = glm::vec2(0.6f, -0.8f);
+    d.wavelength = 0.45f;
+    const tp::DuneWaves<tp::TorusLattice> waves = tp::dune_waves(d, period);
+    const std::function<tp::Noise2(glm::vec2)> reliefs[] = {
+        [&](glm::vec2 p) { return tp::ridged(p, f, lattice); },
+        [&](glm::vec2 p) { return tp::domain_warp(p, f, 0.7f, lattice); },
+        [&](glm::vec2 p) { return tp::dunes(p, d, waves); }};
+    for (const auto& relief : reliefs)
+        for (glm::vec3 q : points(300, 3)) {
+            const glm::vec2 p(q.x + 3, q.y + 3);
+            const tp::Noise2 a = relief(p), b = relief(p + glm::vec2(period.x, 0));
+            const tp::Noise2 c = relief(p - glm::vec2(0, period.y));
+            EXPECT_NEAR(a.value, b.value, 1e-4f);
+            EXPECT_NEAR(a.value, c.value, 1e-4f);
+            EXPECT_NEAR(a.gradient.x, b.gradient.x, 1e-2f * std::max(1.0f, std::abs(a.gradient.x)));
+            EXPECT_NEAR(a.gradient.y, c.gradient.y, 1e-2f * std::max(1.0f, std::abs(a.gradient.y)));
+        }
 }
 
 TEST(ProceduralNoise, BatchesMatchSinglePoints) {
