@@ -1,0 +1,198 @@
+// Rasterizer benchmarks: per-stage costs (vertex, setup, binning, tile raster) and whole frames
+// for 10k .. 4M triangles at 1080p and 4K on 1 and 2 threads, plus a fill-rate test in the
+// style of Intel MSOC's FillrateTest (random right triangles, legs of 10/25/50/250 pixels,
+// back to front at 1080p, every fragment passes the depth test and writes).
+//
+// Counters: tri/s and pix/s are rates (Google Benchmark prints them scaled, e.g. 10.2M/s);
+// "pix" counts triangle area (leg^2 / 2), as MSOC does.
+#include <benchmark/benchmark.h>
+
+#include <tbb/global_control.h>
+
+#include <glm/gtc/matrix_transform.hpp>
+
+#include <map>
+#include <memory>
+
+#include "raster/bin.h"
+#include "raster/camera.h"
+#include "raster/primitive_stage.h"
+#include "raster/rasterizer.h"
+#include "raster/test_meshes.h"
+#include "raster/vertex_stage.h"
+
+namespace {
+
+using namespace tessera;
+
+const glm::mat4 kIdentity(1.0f);
+
+// Meshes are generated once per configuration and kept for the whole run.
+const Mesh& fill_rate_mesh(int leg, size_t count) {
+    static std::map<std::pair<int, size_t>, std::unique_ptr<Mesh>> cache;
+    auto& slot = cache[{leg, count}];
+    if (!slot)
+        slot = std::make_unique<Mesh>(test_meshes::to_world(
+            test_meshes::fill_rate(7, count, float(leg), 1920, 1080), kIdentity, 1920, 1080));
+    return *slot;
+}
+
+// A sphere of about `triangles` triangles filling most of the view.
+const Mesh& sphere_mesh(size_t triangles) {
+    static std::map<size_t, std::unique_ptr<Mesh>> cache;
+    auto& slot = cache[triangles];
+    if (!slot) {
+        const int rings = std::max(4, int(std::sqrt(double(triangles) / 4.0)));
+        const int segments = int(triangles / (2 * size_t(rings - 1)));
+        slot = std::make_unique<Mesh>(test_meshes::sphere(segments, rings));
+    }
+    return *slot;
+}
+
+glm::mat4 sphere_camera(int w, int h) {
+    Camera camera;
+    camera.eye = {0.0f, 0.4f, 2.6f};
+    camera.aspect = float(w) / float(h);
+    camera.fovy_deg = 50.0f;
+    return camera.view_projection();
+}
+
+void BM_FillRate(benchmark::State& state) {
+    const int leg = int(state.range(0));
+    const int threads = int(state.range(1));
+    const size_t count = leg <= 25 ? (1u << 20) : leg <= 50 ? (1u << 19) : (1u << 16);
+    const Mesh& mesh = fill_rate_mesh(leg, count);
+    tbb::global_control limit(tbb::global_control::max_allowed_parallelism, size_t(threads));
+    Rasterizer rasterizer;
+    VisibilityBuffer vis;
+    const Viewport viewport(1920, 1080);
+    rasterizer.render(mesh, kIdentity, viewport, {}, vis);  // warm-up: allocations, page faults
+    for (auto _ : state) {
+        rasterizer.render(mesh, kIdentity, viewport, {}, vis);
+        benchmark::DoNotOptimize(vis.triangle.data());
+    }
+    state.counters["tri/s"] = benchmark::Counter(double(count), benchmark::Counter::kIsIterationInvariantRate);
+    state.counters["pix/s"] =
+        benchmark::Counter(double(count) * leg * leg / 2.0, benchmark::Counter::kIsIterationInvariantRate);
+}
+BENCHMARK(BM_FillRate)
+    ->ArgNames({"leg", "threads"})
+    ->ArgsProduct({{10, 25, 50, 250}, {1, 2}})
+    ->Unit(benchmark::kMillisecond)
+    ->UseRealTime();
+
+void BM_Frame(benchmark::State& state) {
+    const size_t triangles = size_t(state.range(0)) * 1000;
+    const int height = int(state.range(1));
+    const int width = height * 16 / 9;
+    const int threads = int(state.range(2));
+    const Mesh& mesh = sphere_mesh(triangles);
+    tbb::global_control limit(tbb::global_control::max_allowed_parallelism, size_t(threads));
+    Rasterizer rasterizer;
+    VisibilityBuffer vis;
+    const Viewport viewport(width, height);
+    const glm::mat4 vp = sphere_camera(width, height);
+    RasterOptions options;
+    options.cull = CullMode::back;
+    rasterizer.render(mesh, vp, viewport, options, vis);  // warm-up: allocations, page faults
+    for (auto _ : state) {
+        rasterizer.render(mesh, vp, viewport, options, vis);
+        benchmark::DoNotOptimize(vis.triangle.data());
+    }
+    state.counters["tri/s"] =
+        benchmark::Counter(double(mesh.triangle_count()), benchmark::Counter::kIsIterationInvariantRate);
+}
+BENCHMARK(BM_Frame)
+    ->ArgNames({"ktris", "height", "threads"})
+    ->ArgsProduct({{10, 100, 1000, 4000}, {1080, 2160}, {1, 2}})
+    ->Unit(benchmark::kMillisecond)
+    ->UseRealTime();
+
+// The front end alone: vertex stage + clip/cull/setup of one chunk of every triangle.
+void BM_Setup(benchmark::State& state) {
+    const size_t triangles = size_t(state.range(0)) * 1000;
+    const Mesh& mesh = sphere_mesh(triangles);
+    const Viewport viewport(1920, 1080);
+    const glm::mat4 vp = sphere_camera(1920, 1080);
+    tbb::global_control limit(tbb::global_control::max_allowed_parallelism, 1);
+    ClipVertices vertices;
+    std::vector<TriangleSetup> setups;
+    RasterOptions options;
+    options.cull = CullMode::back;
+    for (auto _ : state) {
+        run_vertex_stage(mesh, vp, viewport, vertices);
+        setups.clear();
+        RasterStats stats;
+        run_primitive_stage(mesh, vertices, viewport, options, 0, uint32_t(mesh.triangle_count()), setups, stats);
+        benchmark::DoNotOptimize(setups.data());
+    }
+    state.counters["tri/s"] =
+        benchmark::Counter(double(mesh.triangle_count()), benchmark::Counter::kIsIterationInvariantRate);
+}
+BENCHMARK(BM_Setup)->ArgName("ktris")->Arg(100)->Arg(1000)->Unit(benchmark::kMillisecond)->UseRealTime();
+
+// Binning alone, on the setups of one frame.
+void BM_Binning(benchmark::State& state) {
+    const size_t triangles = size_t(state.range(0)) * 1000;
+    const int tile = int(state.range(1));
+    const Mesh& mesh = sphere_mesh(triangles);
+    const Viewport viewport(1920, 1080);
+    ClipVertices vertices;
+    run_vertex_stage(mesh, sphere_camera(1920, 1080), viewport, vertices);
+    ChunkBins chunk;
+    RasterStats stats;
+    RasterOptions options;
+    options.cull = CullMode::back;
+    run_primitive_stage(mesh, vertices, viewport, options, 0, uint32_t(mesh.triangle_count()), chunk.setups, stats);
+    const TileGrid grid(1920, 1080, tile);
+    std::vector<uint32_t> scratch;
+    for (auto _ : state) {
+        chunk.bin(grid, scratch);
+        benchmark::DoNotOptimize(chunk.entries.data());
+    }
+    state.counters["tri/s"] =
+        benchmark::Counter(double(chunk.setups.size()), benchmark::Counter::kIsIterationInvariantRate);
+}
+BENCHMARK(BM_Binning)
+    ->ArgNames({"ktris", "tile"})
+    ->ArgsProduct({{100, 1000}, {32, 64, 128}})
+    ->Unit(benchmark::kMillisecond)
+    ->UseRealTime();
+
+// The tile stage alone (1 thread, all tiles), for each tile size.
+void BM_TileRaster(benchmark::State& state) {
+    const size_t triangles = size_t(state.range(0)) * 1000;
+    const int tile = int(state.range(1));
+    const Mesh& mesh = sphere_mesh(triangles);
+    const Viewport viewport(1920, 1080);
+    ClipVertices vertices;
+    run_vertex_stage(mesh, sphere_camera(1920, 1080), viewport, vertices);
+    ChunkBins chunk;
+    RasterStats stats;
+    RasterOptions options;
+    options.cull = CullMode::back;
+    run_primitive_stage(mesh, vertices, viewport, options, 0, uint32_t(mesh.triangle_count()), chunk.setups, stats);
+    const TileGrid grid(1920, 1080, tile);
+    std::vector<uint32_t> scratch;
+    chunk.bin(grid, scratch);
+    TileBuffers buffers;
+    for (auto _ : state) {
+        for (int t = 0; t < grid.count(); ++t) {
+            const int tx = t % grid.tiles_x, ty = t / grid.tiles_x;
+            const TileRect rect{tx * tile, ty * tile, std::min((tx + 1) * tile, 1920), std::min((ty + 1) * tile, 1080)};
+            buffers.clear(tile);
+            for (const TriangleSetup* e = chunk.begin(t); e != chunk.end(t); ++e)
+                rasterize_opaque(*e, rect, buffers);
+            benchmark::DoNotOptimize(buffers.depth.data());
+        }
+    }
+    state.counters["tri/s"] =
+        benchmark::Counter(double(chunk.setups.size()), benchmark::Counter::kIsIterationInvariantRate);
+}
+BENCHMARK(BM_TileRaster)
+    ->ArgNames({"ktris", "tile"})
+    ->ArgsProduct({{100, 1000}, {32, 64, 128}})
+    ->Unit(benchmark::kMillisecond)
+    ->UseRealTime();
+
+}  // namespace

@@ -1,0 +1,167 @@
+// Shading benchmarks: cost per shaded pixel for each model (SIMD kernel, one thread, pixels
+// of a 1080p visibility buffer), the scalar reference kernel for the SIMD speed-up, texture
+// sampling throughput per filter, and whole 1080p Phong frames of a 1M-triangle scene through
+// the tile rasterizer + shading (the comparison with llvmpipe running a Phong GLSL
+// shader; see BENCHMARKS.md).
+//
+// Counters: pix/s and samples/s are rates.
+#include <benchmark/benchmark.h>
+
+#include <tbb/global_control.h>
+
+#include <memory>
+#include <random>
+
+#include "raster/geometry/param_surface.h"
+#include "raster/geometry/surfaces.h"
+#include "raster/rasterizer.h"
+#include "raster/shade/frame_shading.h"
+#include "raster/shade/scene_renderer.h"
+#include "raster/texture/sampler.h"
+
+namespace {
+
+using namespace tessera;
+
+constexpr int kWidth = 1920, kHeight = 1080;
+
+Texture checker(int size) {
+    std::vector<glm::vec4> t(size_t(size) * size_t(size));
+    for (int y = 0; y < size; ++y)
+        for (int x = 0; x < size; ++x)
+            t[size_t(y * size + x)] = ((x / 8 + y / 8) & 1) ? glm::vec4(0.9f, 0.8f, 0.6f, 1) : glm::vec4(0.2f, 0.3f, 0.5f, 1);
+    return Texture(size, size, std::move(t));
+}
+
+Texture bumps(int size) {
+    std::vector<glm::vec4> t(size_t(size) * size_t(size));
+    for (int y = 0; y < size; ++y)
+        for (int x = 0; x < size; ++x) {
+            const float a = 6.2831853f * 8.0f * float(x) / float(size), b = 6.2831853f * 8.0f * float(y) / float(size);
+            const glm::vec3 n = glm::normalize(glm::vec3(-0.3f * std::cos(a) * std::sin(b), -0.3f * std::sin(a) * std::cos(b), 1));
+            t[size_t(y * size + x)] = glm::vec4(n * 0.5f + 0.5f, 1.0f);
+        }
+    return Texture(size, size, std::move(t));
+}
+
+// A sphere of `n` x `n/2` quads filling most of a 1080p view, two lights, one material whose
+// model and textures the benchmark picks.
+Scene sphere_scene(int n) {
+    Scene s;
+    s.camera.eye = {0, 0, 2.6f};
+    s.camera.aspect = float(kWidth) / float(kHeight);
+    s.lights = {point_light({2, 2, 3}, glm::vec3(0.1f), glm::vec3(0.9f)),
+                directional_light({-1, 0.5f, 1}, glm::vec3(0.05f), glm::vec3(0.3f))};
+    s.textures.push_back(checker(512));
+    s.textures.push_back(bumps(512));
+    s.materials.push_back(Material{});
+    s.objects.push_back(Object{"sphere", std::make_shared<const Mesh>(tessellate(sphere_surface({0, 0, 0}, 1.0f), n, n / 2)),
+                               0, {}, {}});
+    return s;
+}
+
+struct Fixture {
+    Scene scene = sphere_scene(256);
+    BakedScene baked = bake(scene);
+    std::vector<CoveredPixel> pixels;
+    Fixture() {
+        Rasterizer r;
+        VisibilityBuffer vis;
+        r.render(baked.mesh, scene.camera.view_projection(), Viewport(kWidth, kHeight), RasterOptions{}, vis);
+        for (int y = 0; y < kHeight; ++y)
+            for (int x = 0; x < kWidth; ++x)
+                if (const uint32_t t = vis.triangle[size_t(y) * kWidth + size_t(x)]; t != kNoTriangle)
+                    pixels.push_back({x, y, t});
+    }
+};
+
+Fixture& fixture() {
+    static Fixture f;
+    return f;
+}
+
+// Mode: 0 flat, 1 gouraud, 2 phong, 3 toon, 4 phong + diffuse texture, 5 phong + normal map.
+void configure(Material& m, int mode) {
+    m = Material{};
+    m.model = mode == 0 ? ShadingModel::flat : mode == 1 ? ShadingModel::gouraud : mode == 3 ? ShadingModel::toon
+                                                                                             : ShadingModel::phong;
+    if (mode == 4) m.diffuse_texture = 0;
+    if (mode == 5) m.normal_texture = 1;
+}
+
+const char* mode_name(int mode) {
+    static const char* names[] = {"flat", "gouraud", "phong", "toon", "phong_textured", "phong_normalmap"};
+    return names[mode];
+}
+
+void BM_ShadePixels(benchmark::State& state) {
+    const int mode = int(state.range(0));
+    const bool reference = state.range(1) != 0;
+    Fixture& f = fixture();
+    configure(f.scene.materials[0], mode);
+    tbb::global_control one(tbb::global_control::max_allowed_parallelism, 1);
+    const FrameShading shading(f.baked, f.scene, RenderState{f.scene.camera, kWidth, kHeight, f.scene.lights});
+    std::vector<glm::vec4> out(f.pixels.size());
+    for (auto _ : state) {
+        if (reference) shading.shade_reference(f.pixels, out);
+        else shading.shade(f.pixels, out);
+        benchmark::DoNotOptimize(out.data());
+    }
+    state.SetLabel(std::string(mode_name(mode)) + (reference ? " scalar" : " simd"));
+    state.counters["pix/s"] = benchmark::Counter(double(f.pixels.size()) * double(state.iterations()),
+                                                 benchmark::Counter::kIsRate);
+    state.counters["pixels"] = double(f.pixels.size());
+}
+BENCHMARK(BM_ShadePixels)
+    ->ArgsProduct({{0, 1, 2, 3, 4, 5}, {0}})
+    ->Args({2, 1})
+    ->Args({5, 1})
+    ->Unit(benchmark::kMillisecond);
+
+void BM_TextureSample(benchmark::State& state) {
+    const auto filter = TextureFilter(state.range(0));
+    static const Texture texture = checker(1024);
+    std::mt19937 rng(3);
+    std::uniform_real_distribution<float> uv(-2.0f, 2.0f), scale(0.1f, 8.0f);
+    struct Query {
+        glm::vec2 uv;
+        UvDerivatives d;
+    };
+    std::vector<Query> queries(1 << 16);
+    for (Query& q : queries) {
+        const float s = scale(rng) / 1024.0f;
+        q = {{uv(rng), uv(rng)}, {{s, 0.0f}, {0.0f, s * 0.7f}}};
+    }
+    glm::vec4 sum(0.0f);
+    for (auto _ : state) {
+        for (const Query& q : queries) sum += sample(texture, q.uv, q.d, filter, TextureWrap::repeat);
+        benchmark::DoNotOptimize(sum);
+    }
+    static const char* names[] = {"nearest", "bilinear", "mipmap", "trilinear"};
+    state.SetLabel(names[state.range(0)]);
+    state.counters["samples/s"] = benchmark::Counter(double(queries.size()) * double(state.iterations()),
+                                                     benchmark::Counter::kIsRate);
+}
+BENCHMARK(BM_TextureSample)->DenseRange(0, 3)->Unit(benchmark::kMicrosecond);
+
+// A whole 1080p frame: bake + raster + Phong shading of a 1M-triangle sphere (1000 x 500 quads).
+void BM_PhongFrame1080p(benchmark::State& state) {
+    const int threads = int(state.range(0));
+    tbb::global_control limit(tbb::global_control::max_allowed_parallelism, size_t(threads));
+    static Scene scene = sphere_scene(1000);
+    scene.materials[0] = Material{};
+    SceneRenderer renderer;
+    RasterStats stats;
+    for (auto _ : state) {
+        const Frame f = renderer.render(scene, kWidth, kHeight, {}, &stats);
+        benchmark::DoNotOptimize(f.pixels.data());
+    }
+    state.counters["triangles"] = double(stats.triangles);
+    state.counters["pixels"] = double(stats.visible_pixels);
+    // The last frame's split: the rasterizer's stages, and the tile passes (shading).
+    state.counters["raster_ms"] = stats.vertex_ms + stats.setup_bin_ms + stats.raster_ms;
+    state.counters["shade_ms"] = stats.passes_ms;
+}
+BENCHMARK(BM_PhongFrame1080p)->Arg(1)->Arg(2)->Unit(benchmark::kMillisecond)->UseRealTime();
+
+}  // namespace

@@ -1,0 +1,279 @@
+// `tessera render`: animation frames of a scene file.
+//   tessera render --scene NAME|FILE.json [--size WxH] [--frames A:B] [--fps F]
+//                  [--out out/NAME_####.png|.exr|.tif] [--threads N]
+//                  [--renderer raster|raytrace] [--shadows none|map|rays]
+//                  [--resume] [--shard I/N] [--stats] [--trace FILE.json] [--quiet]
+// Frames are encoded and written on a background thread (FrameWriter) while the next one
+// renders, each atomically (temp name + rename), so an interrupted run leaves only complete
+// frames and --resume skips them. Ctrl-C finishes the frame in hand, waits for the writer
+// and exits 130. Exit codes as every command: 2 for bad flags, 1 for a failed run.
+#include <unistd.h>
+
+#include <algorithm>
+#include <atomic>
+#include <chrono>
+#include <cmath>
+#include <cstring>
+#include <csignal>
+#include <cstdio>
+#include <filesystem>
+#include <map>
+#include <set>
+#include <string>
+#include <vector>
+
+#include "examples/command.h"
+#include "raster/error.h"
+#include "raster/image_io.h"
+#include "raster/output/frame.h"
+#include "raster/output/frame_sequence.h"
+#include "raster/output/frame_writer.h"
+#include "raster/render/frame_renderer.h"
+#include "raster/scene_file/scene_build.h"
+#include "raster/scene_file/scene_library.h"
+#include "raster/scene_file/scene_parse.h"
+#include "raster/trace.h"
+
+namespace tessera::cli {
+namespace {
+
+namespace fs = std::filesystem;
+
+// Set by SIGINT, read between frames: the render stops after the frame in hand.
+volatile std::sig_atomic_t g_interrupted = 0;
+extern "C" void on_interrupt(int) { g_interrupted = 1; }
+
+// Frames beyond this many pixels would need the streamed tiled output (not built yet):
+// 8192 x 8192 keeps the float frame, visibility and encode buffers near 2 GiB.
+constexpr int64_t kMaxPixels = int64_t(8192) * 8192;
+
+struct Options {
+    std::string scene = "snakes";
+    std::string size, frames, out, renderer = "raster", shadows, shard = "0/1", trace;
+    float fps = 0.0f;
+    int threads = 0;
+    bool resume = false, stats = false, quiet = false;
+};
+
+std::string lower_extension(const fs::path& p) {
+    std::string e = p.extension().string();
+    std::transform(e.begin(), e.end(), e.begin(), [](unsigned char c) { return char(std::tolower(c)); });
+    return e;
+}
+
+// The frame in the file's encoding (frame.h: PNG 8-bit sRGB, TIFF 16-bit sRGB, EXR float).
+OwnedImage encode(const Frame& frame, const fs::path& path) {
+    OwnedImage image{frame.width, frame.height, 4, PixelType::u8, {}};
+    const std::string ext = lower_extension(path);
+    if (ext == ".exr") {
+        image.type = PixelType::f32;
+        image.bytes.resize(frame.pixels.size() * sizeof(glm::vec4));
+        std::memcpy(image.bytes.data(), frame.pixels.data(), image.bytes.size());
+    } else if (ext == ".tif" || ext == ".tiff") {
+        image.type = PixelType::u16;
+        const std::vector<uint16_t> v = encode_srgb16(frame);
+        image.bytes.resize(v.size() * 2);
+        std::memcpy(image.bytes.data(), v.data(), image.bytes.size());
+    } else {
+        image.bytes = encode_srgb8(frame);
+    }
+    return image;
+}
+
+// Fails before any rendering when the output directory cannot take files.
+void prepare_output_directory(const fs::path& first_file) {
+    const fs::path dir = first_file.parent_path().empty() ? fs::path(".") : first_file.parent_path();
+    std::error_code ec;
+    fs::create_directories(dir, ec);
+    if (!fs::is_directory(dir))
+        throw Error("cannot write frames to '" + dir.string() + "': " + (ec ? ec.message() : "not a directory"));
+    if (access(dir.c_str(), W_OK) != 0)
+        throw Error("cannot write frames to '" + dir.string() + "': permission denied");
+}
+
+// A run killed mid-write (SIGKILL, power loss) leaves its temporary ".NAME.tmpPID_N" beside
+// the frame (atomic_file.h). --resume removes those of its own frames: other shards render
+// other frames, so their temporaries have other names and are never touched.
+void remove_stale_temporaries(const std::vector<fs::path>& frames) {
+    std::map<fs::path, std::set<std::string>> names;  // directory -> frame file names
+    for (const fs::path& f : frames)
+        names[f.parent_path().empty() ? fs::path(".") : f.parent_path()].insert(f.filename().string());
+    std::error_code ec;
+    for (const auto& [dir, wanted] : names) {
+        std::vector<fs::path> stale;
+        for (const auto& entry : fs::directory_iterator(dir, ec)) {
+            const std::string n = entry.path().filename().string();
+            const size_t tmp = n.rfind(".tmp");
+            if (n.size() > 1 && n[0] == '.' && tmp != std::string::npos && wanted.count(n.substr(1, tmp - 1)))
+                stale.push_back(entry.path());
+        }
+        for (const fs::path& p : stale) fs::remove(p, ec);
+    }
+}
+
+std::string format_seconds(double s) {
+    char buf[32];
+    if (s >= 3600) std::snprintf(buf, sizeof buf, "%dh%02dm", int(s / 3600), int(s / 60) % 60);
+    else if (s >= 60) std::snprintf(buf, sizeof buf, "%dm%02ds", int(s / 60), int(s) % 60);
+    else std::snprintf(buf, sizeof buf, "%.1fs", s);
+    return buf;
+}
+
+double median(std::vector<double> v) {
+    if (v.empty()) return 0.0;
+    std::sort(v.begin(), v.end());
+    return v.size() % 2 ? v[v.size() / 2] : 0.5 * (v[v.size() / 2 - 1] + v[v.size() / 2]);
+}
+
+int run(const Options& o, const std::string& executable) {
+    const auto guard = limit_threads(o.threads);
+    // Scene.
+    const fs::path file = find_scene(o.scene, scene_directories(TESSERA_SCENE_DIR, executable));
+    std::vector<std::string> warnings;
+    SceneSpec spec = load_scene_file(file, warnings);
+    for (const std::string& w : warnings) std::fprintf(stderr, "tessera: warning: %s\n", w.c_str());
+    const std::string scene_name = file.stem().string();
+
+    // Flags over the scene's defaults, all checked before any work.
+    int width = spec.size.x, height = spec.size.y;
+    if (!o.size.empty()) parse_size(o.size, "--size", width, height);
+    if (int64_t(width) * height > kMaxPixels)
+        throw UsageError("--size " + std::to_string(width) + "x" + std::to_string(height) +
+                         ": frames above 8192x8192 pixels need streamed tiled output, which this build lacks");
+    FrameRange range{spec.animation.first, spec.animation.last};
+    if (!o.frames.empty()) range = parse_frame_range(o.frames);
+    const Shard shard = parse_shard(o.shard);
+    const float fps = o.fps > 0.0f ? o.fps : spec.animation.fps;
+    if (!(fps > 0.0f) || !std::isfinite(fps)) throw UsageError("--fps must be positive");
+    const FramePattern pattern(o.out.empty() ? "out/" + scene_name + "_####.png" : o.out);
+    if (!pattern.has_placeholder() && range.count() > 1)
+        throw UsageError("--out '" + pattern.text() + "' has no #### or %04d, but " + std::to_string(range.count()) +
+                         " frames would overwrite it");
+    if (!image_format_supported(pattern.path_for(range.first)))
+        throw UsageError("--out '" + pattern.text() + "': no image format for that extension (use .png, .exr or .tif)");
+    const RendererKind renderer = parse_renderer(o.renderer);
+    const ShadowMode shadows = parse_shadow_mode(o.shadows.empty() ? spec.shadows : o.shadows);
+
+    prepare_output_directory(pattern.path_for(range.first));
+    std::vector<int> frames;
+    int skipped = 0;
+    const std::vector<int> shard_frames = frames_of_shard(range, shard);
+    if (o.resume) {
+        std::vector<fs::path> paths;
+        for (int f : shard_frames) paths.push_back(pattern.path_for(f));
+        remove_stale_temporaries(paths);
+    }
+    for (int f : shard_frames) {
+        if (o.resume && image_is_complete(pattern.path_for(f), width, height)) ++skipped;
+        else frames.push_back(f);
+    }
+
+    Trace trace;
+    if (!o.trace.empty()) trace.activate();
+    AnimatedScene scene = [&] {
+        TraceScope t("build scene");
+        return build_scene(std::move(spec));
+    }();
+    FrameRenderer frame_renderer(scene, width, height, renderer, shadows);
+    FrameWriter writer(2);
+
+    const bool tty = isatty(fileno(stderr)) != 0 && !o.quiet;
+    if (!o.quiet && skipped > 0) std::fprintf(stderr, "resume: %d complete frame(s) skipped\n", skipped);
+    std::signal(SIGINT, on_interrupt);
+    const auto start = std::chrono::steady_clock::now();
+    std::vector<double> totals, animate, bake, bvh, visibility, tiles;
+    size_t done = 0;
+    for (int f : frames) {
+        if (g_interrupted) break;
+        FrameStats st;
+        Frame frame;
+        {
+            TraceScope t("frame", "frame", f);
+            frame = frame_renderer.render(float(f) / fps, &st);
+        }
+        const fs::path path = pattern.path_for(f);
+        writer.submit(path, encode(frame, path));
+        ++done;
+        totals.push_back(st.total_ms);
+        animate.push_back(st.animate_ms);
+        bake.push_back(st.bake_ms);
+        bvh.push_back(st.bvh_ms);
+        visibility.push_back(st.visibility_ms);
+        tiles.push_back(st.raster.passes_ms);
+        const double elapsed = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+        const double rate = double(done) / elapsed;
+        if (o.stats)
+            std::fprintf(stderr,
+                         "%sframe %d: %.1f ms (animate %.1f, bake %.1f, bvh %.1f, vertex %.1f, setup+bin %.1f, "
+                         "raster+tiles %.1f, of which tile passes %.1f), %llu triangles, %llu shadowed pixels\n",
+                         tty ? "\r\033[K" : "", f, st.total_ms, st.animate_ms, st.bake_ms, st.bvh_ms,
+                         st.raster.vertex_ms, st.raster.setup_bin_ms, st.visibility_ms, st.raster.passes_ms,
+                         static_cast<unsigned long long>(st.triangles),
+                         static_cast<unsigned long long>(st.shadowed_pixels));
+        if (tty) {
+            constexpr int kBar = 24;
+            const int filled = int(kBar * done / frames.size());
+            std::fprintf(stderr, "\r\033[K[%s%s] frame %zu/%zu  %.2f fps  ETA %s", std::string(size_t(filled), '#').c_str(),
+                         std::string(size_t(kBar - filled), '.').c_str(), done, frames.size(), rate,
+                         format_seconds(double(frames.size() - done) / rate).c_str());
+            std::fflush(stderr);
+        } else if (!o.quiet) {
+            std::fprintf(stderr, "frame %d (%zu/%zu) %.1f ms -> %s\n", f, done, frames.size(), st.total_ms,
+                         path.string().c_str());
+        }
+    }
+    writer.finish();
+    if (tty) std::fputc('\n', stderr);
+    if (!o.trace.empty()) {
+        trace.deactivate();
+        trace.write(o.trace);
+    }
+    const double elapsed = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    if (o.stats && done > 0)
+        std::fprintf(stderr,
+                     "summary: %zu frames of %dx%d in %.2f s (%.2f fps); median per frame: total %.1f ms, animate %.1f, "
+                     "bake %.1f, bvh %.1f, visibility+tiles %.1f, tile passes %.1f\n",
+                     done, width, height, elapsed, double(done) / elapsed, median(totals), median(animate),
+                     median(bake), median(bvh), median(visibility), median(tiles));
+    if (g_interrupted) {
+        std::fprintf(stderr, "tessera: interrupted: %zu frame(s) written; rerun with --resume to continue\n", done);
+        return 130;
+    }
+    if (!o.quiet && !tty)
+        std::fprintf(stderr, "rendered %zu frame(s) in %.2f s\n", done, elapsed);
+    return 0;
+}
+
+// The running binary (for scene directories next to an installed tessera).
+std::string executable_path() {
+    std::error_code ec;
+    const fs::path exe = fs::read_symlink("/proc/self/exe", ec);
+    return ec ? std::string() : exe.string();
+}
+
+TESSERA_COMMAND(20, [](CLI::App& root) -> Run {
+    auto o = std::make_shared<Options>();
+    CLI::App* cmd = root.add_subcommand("render", "Render animation frames of a scene (built-in name or FILE.json)");
+    cmd->add_option("--scene", o->scene, "Scene name (snakes, flag, toon, bumpcube, terrain, metaballs, stress) or FILE.json")
+        ->capture_default_str();
+    cmd->add_option("--size", o->size, "Frame size WxH (default: the scene's)");
+    cmd->add_option("--frames", o->frames, "Frames A:B, inclusive (default: the scene's)");
+    cmd->add_option("--fps", o->fps, "Frames per second of scene time (default: the scene's)");
+    cmd->add_option("--out", o->out, "Output pattern; #### or %04d is the frame number (.png, .exr, .tif)");
+    add_threads_option(*cmd, o->threads);
+    cmd->add_option("--renderer", o->renderer, "Visibility by the tile rasterizer or Embree rays")
+        ->check(CLI::IsMember({"raster", "raytrace"}))
+        ->capture_default_str();
+    cmd->add_option("--shadows", o->shadows, "Shadows: none, map or rays (default: the scene's)")
+        ->check(CLI::IsMember({"none", "map", "rays"}));
+    cmd->add_flag("--resume", o->resume, "Skip frames whose files are already complete");
+    cmd->add_option("--shard", o->shard, "Render shard I of N (every N-th frame from the I-th, 0-based)")
+        ->capture_default_str();
+    cmd->add_flag("--stats", o->stats, "Print per-stage times per frame and a summary");
+    cmd->add_option("--trace", o->trace, "Write a Chrome trace event JSON (Perfetto, chrome://tracing)");
+    cmd->add_flag("--quiet", o->quiet, "No progress output");
+    return [o] { return run(*o, executable_path()); };
+});
+
+}  // namespace
+}  // namespace tessera::cli

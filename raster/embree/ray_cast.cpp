@@ -1,0 +1,108 @@
+#include "raster/embree/ray_cast.h"
+
+#include "raster/embree/packets.h"
+#include "raster/embree/pixel_rays.h"
+#include "raster/embree/tiles.h"
+
+namespace tessera::rt {
+namespace {
+
+// The depth plane of the last triangle written: neighbouring pixels mostly hit the same one.
+struct DepthCache {
+    unsigned triangle = kNoTriangle;
+    PixelRays::DepthPlane plane;
+};
+
+struct Frame {
+    const RayScene& scene;
+    const PixelRays& rays;
+    VisibilityBuffer& out;
+
+    // Depth from the hit triangle's plane at the pixel centre (pixel_rays.h); from the hit
+    // point only for a plane through the eye, which a ray can hit only on its edge.
+    void write(int x, int y, unsigned primitive, const glm::vec3& origin,
+               const glm::vec3& direction, float t, DepthCache& cache) const {
+        const size_t pixel = size_t(y) * size_t(out.width) + size_t(x);
+        out.triangle[pixel] = primitive;
+        if (primitive != cache.triangle) {
+            const Mesh& mesh = scene.mesh();
+            const uint32_t* index = &mesh.indices[3 * size_t(primitive)];
+            cache.plane = rays.depth_plane(mesh.positions[index[0]], mesh.positions[index[1]],
+                                           mesh.positions[index[2]]);
+            cache.triangle = primitive;
+        }
+        out.depth[pixel] = cache.plane.valid ? cache.plane.at(x + 0.5, y + 0.5)
+                                             : rays.window_depth(origin + t * direction);
+    }
+};
+
+void trace_single(const Frame& frame, const ImageTile& tile) {
+    RTCIntersectContext context;
+    rtcInitIntersectContext(&context);
+    DepthCache cache;
+    for (int y = tile.y0; y < tile.y1; ++y)
+        for (int x = tile.x0; x < tile.x1; ++x) {
+            glm::vec3 origin, direction;
+            frame.rays.pixel_ray(x, y, origin, direction);
+            RTCRayHit hit{};
+            hit.ray.org_x = origin.x;
+            hit.ray.org_y = origin.y;
+            hit.ray.org_z = origin.z;
+            hit.ray.dir_x = direction.x;
+            hit.ray.dir_y = direction.y;
+            hit.ray.dir_z = direction.z;
+            hit.ray.tnear = 0.0f;
+            hit.ray.tfar = 1.0f;
+            hit.ray.mask = 0xFFFFFFFFu;
+            hit.hit.geomID = RTC_INVALID_GEOMETRY_ID;
+            rtcIntersect1(frame.scene.handle(), &context, &hit);
+            if (hit.hit.geomID != RTC_INVALID_GEOMETRY_ID)
+                frame.write(x, y, hit.hit.primID, origin, direction, hit.ray.tfar, cache);
+        }
+}
+
+template <int N>
+void trace_packets(const Frame& frame, const ImageTile& tile) {
+    using P = Packet<N>;
+    RTCIntersectContext context = coherent_context();
+    DepthCache cache;
+    for (int by = tile.y0; by < tile.y1; by += P::kHeight)
+        for (int bx = tile.x0; bx < tile.x1; bx += P::kWidth) {
+            typename P::RayHit packet;
+            alignas(64) int valid[N];
+            glm::vec3 origin[N], direction[N];
+            for (int lane = 0; lane < N; ++lane) {
+                const int x = bx + lane % P::kWidth, y = by + lane / P::kWidth;
+                valid[lane] = (x < tile.x1 && y < tile.y1) ? -1 : 0;
+                if (valid[lane]) frame.rays.pixel_ray(x, y, origin[lane], direction[lane]);
+                else origin[lane] = direction[lane] = glm::vec3(0.0f, 0.0f, 1.0f);
+                set_lane(packet.ray, lane, origin[lane], direction[lane], 0.0f, 1.0f);
+                packet.hit.geomID[lane] = RTC_INVALID_GEOMETRY_ID;
+            }
+            P::intersect(valid, frame.scene.handle(), &context, &packet);
+            for (int lane = 0; lane < N; ++lane)
+                if (valid[lane] && packet.hit.geomID[lane] != RTC_INVALID_GEOMETRY_ID)
+                    frame.write(bx + lane % P::kWidth, by + lane / P::kWidth,
+                                packet.hit.primID[lane], origin[lane], direction[lane],
+                                packet.ray.tfar[lane], cache);
+        }
+}
+
+}  // namespace
+
+void cast_primary_rays(const RayScene& scene, const glm::mat4& view_projection, int width,
+                       int height, VisibilityBuffer& out, RayPacket packet) {
+    const PixelRays rays(view_projection, width, height);
+    out.reset(width, height);
+    const Frame frame{scene, rays, out};
+    parallel_for_tiles(width, height, [&](const ImageTile& tile) {
+        const FlushDenormals flush;  // Embree's per-thread recommendation (device.h)
+        switch (packet) {
+            case RayPacket::single: trace_single(frame, tile); break;
+            case RayPacket::x8: trace_packets<8>(frame, tile); break;
+            case RayPacket::x16: trace_packets<16>(frame, tile); break;
+        }
+    });
+}
+
+}  // namespace tessera::rt

@@ -1,0 +1,27 @@
+// The ray-cast renderer's visibility pass: one primary ray per pixel centre, traced by Embree,
+// written into the same VisibilityBuffer the rasterizer fills (triangle id = Embree primitive
+// id, window depth of the hit point through the same view-projection), so shading cannot tell
+// which renderer found the surface.
+//
+// Work is split into fixed 32x32-pixel tiles run in parallel by oneTBB; inside a tile, rays go
+// in coherent packets (4x2 pixels for 8 lanes, 4x4 for 16) or one at a time (the reference
+// path). Every pixel is computed independently, so the output is identical for any thread
+// count and any packet width.
+#pragma once
+#include <glm/glm.hpp>
+
+#include "raster/embree/scene.h"
+#include "raster/visibility.h"
+
+namespace tessera::rt {
+
+// How rays are handed to Embree: one at a time (rtcIntersect1 / rtcOccluded1) or as coherent
+// packets of 8 or 16 (rtcIntersect8/16, rtcOccluded8/16 with the COHERENT context flag).
+enum class RayPacket { single = 1, x8 = 8, x16 = 16 };
+
+// Resets `out` to width x height and fills it. Throws std::invalid_argument for a
+// non-positive size.
+void cast_primary_rays(const RayScene& scene, const glm::mat4& view_projection, int width,
+                       int height, VisibilityBuffer& out, RayPacket packet = RayPacket::x16);
+
+}  // namespace tessera::rt

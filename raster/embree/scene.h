@@ -1,0 +1,85 @@
+// An Embree scene over a tessera Mesh: one triangle geometry (geometry id 0) whose primitive
+// ids are the mesh's triangle ids, built over the SAME vertex and index buffers the
+// rasterizer reads (rtcSetSharedGeometryBuffer), so the two renderers see identical input.
+//
+// Padding: Embree reads the last vertex with a 16-byte SSE load (buffer_padding.md), 4 bytes
+// past a float3 array. A std::vector<glm::vec3> whose capacity exceeds its size has those
+// bytes, so reserve_ray_padding() (one reserve(size + 1) where the frame's mesh is baked) is
+// all sharing needs. A mesh without that capacity cannot be shared without reading out of
+// bounds; only then the scene copies the positions into an Embree-allocated (padded) buffer,
+// and shares_vertices() says so. Indices need no padding.
+//
+// Animation: the same topology with moved vertices is update()d, either by refitting the BVH
+// (scene quality LOW + DYNAMIC, geometry quality REFIT: rtcSetGeometryBuildQuality.md says
+// REFIT is honoured only under a LOW scene) or by a LOW-quality rebuild; bench_raytrace
+// measures which wins.
+//
+// Robustness: scenes are built with RTC_SCENE_FLAG_ROBUST. Without it Embree's faster
+// traversal missed a triangle stretched from the near plane to w = 36 whose interior covered
+// the pixel centre 0.7 pixels from any edge (embree_raster_test), where the rasterizer,
+// rightly, drew it; the two renderers must agree on such pixels.
+//
+// Bad geometry: Embree itself skips triangles with non-finite vertices or out-of-range
+// indices (they are never hit), and zero-area triangles cannot be hit; the scene counts all
+// three in defects() so the command can report them while the frame still renders.
+#pragma once
+#include <embree3/rtcore.h>
+
+#include <cstddef>
+
+#include "raster/embree/device.h"
+#include "raster/mesh.h"
+
+namespace tessera::rt {
+
+enum class BvhUpdate {
+    none,     // static scene: MEDIUM quality BVH (best traversal), built once
+    refit,    // animated: LOW scene, REFIT geometry; update() refits the existing BVH
+    rebuild,  // animated: LOW scene and geometry; update() rebuilds from scratch
+};
+
+struct MeshDefects {
+    size_t nonfinite = 0;   // a vertex is NaN or infinite
+    size_t bad_index = 0;   // an index is >= vertex_count
+    size_t degenerate = 0;  // finite, valid indices, zero area (exactly)
+    size_t total() const { return nonfinite + bad_index + degenerate; }
+};
+
+MeshDefects find_mesh_defects(const Mesh& mesh);
+
+// Gives `mesh.positions` the capacity Embree's 16-byte read of the last vertex needs.
+void reserve_ray_padding(Mesh& mesh);
+
+class RayScene {
+public:
+    // The scene keeps pointers into `mesh`: the mesh must outlive the scene and its vectors
+    // must not reallocate (call update() after changing positions in place).
+    // Throws std::invalid_argument if the index count is not a multiple of 3, tessera::Error
+    // if Embree fails.
+    RayScene(const RayDevice& device, const Mesh& mesh, BvhUpdate update = BvhUpdate::none);
+    ~RayScene();
+    RayScene(const RayScene&) = delete;
+    RayScene& operator=(const RayScene&) = delete;
+
+    // Re-reads the mesh's positions (same counts as at construction) and refits or rebuilds
+    // the BVH as chosen at construction. With BvhUpdate::none it rebuilds at MEDIUM quality.
+    void update();
+
+    RTCScene handle() const { return scene_; }
+    const Mesh& mesh() const { return *mesh_; }
+    const MeshDefects& defects() const { return defects_; }
+    bool shares_vertices() const { return shares_vertices_; }
+
+private:
+    void copy_positions();
+    void commit();
+
+    const RayDevice* device_;
+    const Mesh* mesh_;
+    RTCScene scene_ = nullptr;
+    RTCGeometry geometry_ = nullptr;
+    MeshDefects defects_;
+    bool shares_vertices_ = false;
+};
+
+}  // namespace tessera::rt

@@ -1,0 +1,26 @@
+// The background as a compute pass (seeds/003: a full-screen pass that looks up the
+// environment with the per-pixel ray direction, drawn "behind everything"): every pixel of the
+// tile whose depth is still the cleared 1.0 gets the background's radiance along its ray. The
+// opaque shading pass already paints empty pixels this way; this pass is for frames that have
+// no triangles to shade (pure ray-marched scenes).
+#pragma once
+#include "raster/march/pass_target.h"
+#include "raster/march/ray_generation.h"
+#include "raster/shade/background.h"
+
+namespace tessera::march {
+
+class BackgroundPass {
+public:
+    // Both are borrowed and must outlive the pass.
+    BackgroundPass(const RayGenerator& rays, const Background& background)
+        : rays_(rays), background_(background) {}
+
+    void run(const PassTarget& target) const;
+
+private:
+    const RayGenerator& rays_;
+    const Background& background_;
+};
+
+}  // namespace tessera::march

@@ -1,0 +1,25 @@
+// Fog as the last per-pixel compute pass of a tile (seeds/003: "evaluate the formula at the end
+// of the pass; the background is infinitely far"): for every pixel the distance to what it
+// shows is rebuilt from the depth buffer (rasterized triangles and marched surfaces alike;
+// infinity where the depth is the cleared 1.0), and the colour becomes
+// T colour + (1 - T) fog colour with the closed-form transmittance of fog.h.
+#pragma once
+#include "raster/march/fog.h"
+#include "raster/march/pass_target.h"
+#include "raster/march/ray_generation.h"
+
+namespace tessera::march {
+
+class FogPass {
+public:
+    // Validates the fog (std::invalid_argument); the generator is borrowed.
+    FogPass(const RayGenerator& rays, const Fog& fog);
+
+    void run(const PassTarget& target) const;
+
+private:
+    const RayGenerator& rays_;
+    Fog fog_;
+};
+
+}  // namespace tessera::march

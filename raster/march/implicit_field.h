@@ -1,0 +1,50 @@
+// What the marcher needs from a surface: an implicit function with a value and a gradient.
+//
+// Sign convention (seeds/003): f > 0 inside the solid, f < 0 outside, the surface is f = 0.
+// The terrain f(p) = h(p.xz) - p.y, the 3-D noise w/32 + 0.5 - p.y and the metaball sum
+// sum K(|p - c|) - T all read this way, so a ray that starts in the air meets the surface at
+// its first sign change from - to +, and the outward normal is -grad f / |grad f|.
+#pragma once
+#include <glm/glm.hpp>
+
+#include <concepts>
+#include <cstddef>
+
+#include "raster/march/ray_packet.h"
+
+namespace tessera::march {
+
+template <class F>
+concept ImplicitField = requires(const F& field, glm::vec3 p) {
+    { field.value(p) } -> std::convertible_to<float>;
+    { field.gradient(p) } -> std::convertible_to<glm::vec3>;
+};
+
+// A field that can also evaluate kMarchLanes points at once (structure of arrays), written so
+// the lane loop is innermost and vectorises. It must return what value() returns per point.
+template <class F>
+concept PacketField = ImplicitField<F> && requires(const F& field, const float* c, float* out) {
+    field.values(c, c, c, out);
+};
+
+// A field with a batch form over any count of points (the procedural/ fields' interface).
+template <class F>
+concept BatchField = ImplicitField<F> && requires(const F& field, const float* c, float* out) {
+    field.value_batch(size_t{1}, c, c, c, out);
+};
+
+// Field values at kMarchLanes points: the field's own packet or batch loop where it has one,
+// otherwise one value() per lane.
+template <ImplicitField F>
+inline void evaluate_lanes(const F& field, const float* x, const float* y, const float* z,
+                           float* out) {
+    if constexpr (PacketField<F>) {
+        field.values(x, y, z, out);
+    } else if constexpr (BatchField<F>) {
+        field.value_batch(size_t(kMarchLanes), x, y, z, out);
+    } else {
+        for (int i = 0; i < kMarchLanes; ++i) out[i] = field.value(glm::vec3(x[i], y[i], z[i]));
+    }
+}
+
+}  // namespace tessera::march

@@ -1,0 +1,201 @@
+#include "raster/march/metaball_field.h"
+
+#include <algorithm>
+#include <cmath>
+#include <stdexcept>
+#include <string>
+
+#include "raster/march/bounds.h"
+
+namespace tessera::march {
+
+namespace {
+
+bool finite(glm::vec3 v) { return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z); }
+
+// One ball's kernel sample at p (shared by value and gradient so both read the same K).
+template <class Kernel>
+KernelSample sample(const Kernel& kernel, glm::vec3 q, float inv_r2) {
+    return kernel.at(glm::dot(q, q) * inv_r2);
+}
+
+}  // namespace
+
+MetaballField::MetaballField(const std::vector<Metaball>& balls, const MetaballStyle& style)
+    : style_(style), blinn_(style.blinn_sharpness) {
+    if (!(style.threshold > 0.0f) || !std::isfinite(style.threshold))
+        throw std::invalid_argument("metaballs: threshold must be positive and finite, got " +
+                                    std::to_string(style.threshold));
+    if (!(style.blinn_sharpness > 0.0f) || !std::isfinite(style.blinn_sharpness))
+        throw std::invalid_argument("metaballs: Blinn sharpness must be positive and finite, got " +
+                                    std::to_string(style.blinn_sharpness));
+    for (size_t i = 0; i < balls.size(); ++i) {
+        const Metaball& b = balls[i];
+        if (!finite(b.centre) || !std::isfinite(b.weight))
+            throw std::invalid_argument("metaballs: ball " + std::to_string(i) +
+                                        " has a non-finite centre or weight");
+        if (!(b.radius > 0.0f) || !std::isfinite(b.radius))
+            throw std::invalid_argument("metaballs: ball " + std::to_string(i) +
+                                        " needs a positive finite radius, got " +
+                                        std::to_string(b.radius));
+        cx_.push_back(b.centre.x);
+        cy_.push_back(b.centre.y);
+        cz_.push_back(b.centre.z);
+        radius_.push_back(b.radius);
+        inv_r2_.push_back(1.0f / (b.radius * b.radius));
+        weight_.push_back(b.weight);
+    }
+}
+
+float MetaballField::value(glm::vec3 p) const {
+    float sum = 0.0f;
+    for (size_t i = 0; i < cx_.size(); ++i) {
+        const glm::vec3 q = p - glm::vec3(cx_[i], cy_[i], cz_[i]);
+        KernelSample k;
+        switch (style_.kernel) {
+        case MetaballKernel::wyvill: k = sample(WyvillKernel{}, q, inv_r2_[i]); break;
+        case MetaballKernel::perlin: k = sample(PerlinKernel{}, q, inv_r2_[i]); break;
+        default: k = sample(blinn_, q, inv_r2_[i]); break;
+        }
+        sum += weight_[i] * k.value;
+    }
+    return sum - style_.threshold;
+}
+
+glm::vec3 MetaballField::gradient(glm::vec3 p) const {
+    glm::vec3 g(0.0f);
+    for (size_t i = 0; i < cx_.size(); ++i) {
+        const glm::vec3 q = p - glm::vec3(cx_[i], cy_[i], cz_[i]);
+        KernelSample k;
+        switch (style_.kernel) {
+        case MetaballKernel::wyvill: k = sample(WyvillKernel{}, q, inv_r2_[i]); break;
+        case MetaballKernel::perlin: k = sample(PerlinKernel{}, q, inv_r2_[i]); break;
+        default: k = sample(blinn_, q, inv_r2_[i]); break;
+        }
+        g += (weight_[i] * k.d_ds * 2.0f * inv_r2_[i]) * q;
+    }
+    return g;
+}
+
+template <class Kernel>
+void MetaballField::accumulate(const Kernel& kernel, const float* x, const float* y,
+                               const float* z, float* sum) const {
+    // Balls outermost, lanes innermost: the lane loop is branch-free arithmetic on
+    // kMarchLanes floats and vectorises; the summation order per lane equals value()'s.
+    for (size_t b = 0; b < cx_.size(); ++b) {
+        const float cx = cx_[b], cy = cy_[b], cz = cz_[b], inv_r2 = inv_r2_[b], w = weight_[b];
+        for (int i = 0; i < kMarchLanes; ++i) {
+            const float qx = x[i] - cx, qy = y[i] - cy, qz = z[i] - cz;
+            sum[i] += w * kernel.at((qx * qx + qy * qy + qz * qz) * inv_r2).value;
+        }
+    }
+}
+
+void MetaballField::values(const float* x, const float* y, const float* z, float* out) const {
+    alignas(64) float sum[kMarchLanes] = {};
+    switch (style_.kernel) {
+    case MetaballKernel::wyvill: accumulate(WyvillKernel{}, x, y, z, sum); break;
+    case MetaballKernel::perlin: accumulate(PerlinKernel{}, x, y, z, sum); break;
+    default: accumulate(blinn_, x, y, z, sum); break;
+    }
+    for (int i = 0; i < kMarchLanes; ++i) out[i] = sum[i] - style_.threshold;
+}
+
+Interval MetaballField::bounds(glm::vec3 o, glm::vec3 d, float t_far) const {
+    Interval hull;  // empty
+    for (size_t b = 0; b < cx_.size(); ++b) {
+        const Interval s = sphere_interval(o, d, {cx_[b], cy_[b], cz_[b]}, radius_[b], t_far);
+        if (s.empty()) continue;
+        hull = hull.empty() ? s : Interval{std::min(hull.t0, s.t0), std::max(hull.t1, s.t1)};
+    }
+    return hull;
+}
+
+namespace {
+
+// The cone from a common origin that contains every live ray of a packet (primary rays share
+// the eye), so one test per ball can reject balls nowhere near the packet before the per-ray
+// tests. `valid` is false when the origins differ.
+struct PacketCone {
+    bool valid = false;
+    glm::vec3 apex{0.0f}, axis{0.0f};
+    float cos_half = 1.0f, sin_half = 0.0f;  // of the half opening angle
+};
+
+PacketCone packet_cone(const RayPacket& rays) {
+    PacketCone cone;
+    glm::vec3 sum(0.0f);
+    for (int i = 0; i < rays.count; ++i) {
+        if (rays.origin(i) != rays.origin(0)) return cone;
+        sum += rays.direction(i);
+    }
+    const float len = glm::length(sum);
+    if (!(len > 0.0f)) return cone;
+    cone.axis = sum / len;
+    float cos_half = 1.0f;
+    for (int i = 0; i < rays.count; ++i) cos_half = std::min(cos_half, glm::dot(rays.direction(i), cone.axis));
+    cone.apex = rays.origin(0);
+    // Widened by 1e-3 rad so rounding never rejects a ball a ray touches; a false "maybe"
+    // only costs the per-ray tests that follow.
+    const float half = std::acos(std::clamp(cos_half, -1.0f, 1.0f)) + 1e-3f;
+    if (half >= 1.5f) return cone;  // a very wide packet: the trigonometry below would not hold
+    cone.cos_half = std::cos(half);
+    cone.sin_half = std::sin(half);
+    cone.valid = true;
+    return cone;
+}
+
+// True unless the sphere lies entirely outside the cone: the angle between the axis and the
+// centre must not exceed the half angle plus the sphere's angular radius b (sin b = R/dist),
+// compared through cosines, cos(half + b) = cos half cos b - sin half sin b, with no
+// inverse trigonometry per ball.
+bool cone_may_touch(const PacketCone& cone, glm::vec3 centre, float radius) {
+    if (!cone.valid) return true;
+    const glm::vec3 v = centre - cone.apex;
+    const float dist = glm::length(v);
+    if (dist <= radius) return true;
+    const float sin_b = radius / dist;
+    const float cos_b = std::sqrt(1.0f - sin_b * sin_b);
+    const float cos_limit = cone.cos_half * cos_b - cone.sin_half * sin_b;
+    // half + b >= pi/2 happens only for a huge sphere close by: accept it.
+    if (cos_limit <= 0.0f) return true;
+    return glm::dot(v, cone.axis) >= cos_limit * dist;
+}
+
+}  // namespace
+
+void MetaballField::cull(const RayPacket& rays, float t_far, MetaballField& subset,
+                         PacketSegments& segments) const {
+    subset.style_ = style_;
+    subset.blinn_ = blinn_;
+    for (auto* v : {&subset.cx_, &subset.cy_, &subset.cz_, &subset.radius_, &subset.inv_r2_,
+                    &subset.weight_})
+        v->clear();
+    const PacketCone cone = packet_cone(rays);
+    Interval hull[kMarchLanes];
+    for (size_t b = 0; b < cx_.size(); ++b) {
+        const glm::vec3 c(cx_[b], cy_[b], cz_[b]);
+        if (!cone_may_touch(cone, c, radius_[b])) continue;
+        bool crossed = false;
+        for (int i = 0; i < rays.count; ++i) {
+            const Interval s = sphere_interval(rays.origin(i), rays.direction(i), c, radius_[b], t_far);
+            if (s.empty()) continue;
+            crossed = true;
+            hull[i] = hull[i].empty() ? s
+                                      : Interval{std::min(hull[i].t0, s.t0), std::max(hull[i].t1, s.t1)};
+        }
+        if (!crossed) continue;
+        subset.cx_.push_back(cx_[b]);
+        subset.cy_.push_back(cy_[b]);
+        subset.cz_.push_back(cz_[b]);
+        subset.radius_.push_back(radius_[b]);
+        subset.inv_r2_.push_back(inv_r2_[b]);
+        subset.weight_.push_back(weight_[b]);
+    }
+    for (int i = 0; i < kMarchLanes; ++i) {
+        segments.t0[i] = hull[i].t0;
+        segments.t1[i] = hull[i].t1;
+    }
+}
+
+}  // namespace tessera::march

@@ -1,0 +1,58 @@
+// Primary rays per pixel from the inverse view-projection (seeds/003, "rayDirMatrix"): the
+// seed draws a full-screen quad and lets the vertex shader turn normalised device coordinates
+// into a world-space direction with (E V P)^-1, where E translates by the eye position. The
+// translation makes the matrix map NDC straight to eye-relative directions, so no per-pixel
+// subtraction of the eye is needed; since a direction is normalised anyway, the homogeneous
+// divide is skipped too (w > 0 for every point in front of the camera).
+//
+// Pixel centres follow raster/camera.h: x_ndc = (x + 0.5) / width * 2 - 1 and rows run top to
+// bottom, y_ndc = 1 - (y + 0.5) / height * 2.
+#pragma once
+#include <glm/glm.hpp>
+
+#include "raster/camera.h"
+#include "raster/march/ray_packet.h"
+
+namespace tessera::march {
+
+class RayGenerator {
+public:
+    // Throws std::invalid_argument for a non-positive size or a singular view-projection.
+    RayGenerator(const Camera& camera, int width, int height);
+
+    // The unit direction through the centre of pixel (x, y).
+    glm::vec3 direction(int x, int y) const;
+
+    // Rays through pixels (x0 .. x0+count-1, y); count in 1..kMarchLanes.
+    void packet(int x0, int y, int count, RayPacket& out) const;
+
+    // Converts a world-space point to window depth (z_ndc * 0.5 + 0.5), the value the depth
+    // buffer stores, so marched hits and rasterized triangles are compared in one space.
+    float window_depth(const glm::vec3& world) const;
+
+    // Distance from the eye to the surface seen at pixel (x, y) with window depth `depth`
+    // (the point is unprojected through the inverse view-projection); infinity for
+    // depth >= 1, the cleared (empty) value: the fog treats it as the background at infinity.
+    float distance_from_depth(int x, int y, float depth) const;
+
+    // Distance along the unit direction `d` to the far plane: no hit beyond it is visible.
+    float far_distance(glm::vec3 d) const { return far_ / glm::dot(d, forward_); }
+
+    const glm::vec3& eye() const { return eye_; }
+    int width() const { return width_; }
+    int height() const { return height_; }
+
+private:
+    glm::vec2 ndc(int x, int y) const;
+
+    glm::mat4 ray_dir_matrix_;   // (E V P)^-1: NDC (x, y, 1, 1) -> eye-relative direction
+    glm::mat4 view_projection_;  // world -> clip
+    glm::mat4 inverse_view_projection_;
+    glm::vec3 eye_;
+    glm::vec3 forward_;  // unit view direction
+    float far_;
+    int width_;
+    int height_;
+};
+
+}  // namespace tessera::march

@@ -1,0 +1,39 @@
+// A rendered frame: linear-light float RGBA, rows top to bottom, and its output to files.
+//
+// write_frame() picks the encoding from the extension, converting colour space in exactly one
+// place (color_space.h):
+//   .exr            32-bit float RGBA, linear, unchanged (for compositing and comparisons);
+//   .png            8-bit RGBA, RGB sRGB-encoded, alpha linear;
+//   .tif / .tiff    16-bit RGBA, RGB sRGB-encoded, alpha linear;
+//   anything else OpenImageIO writes: 8-bit sRGB like PNG.
+// The file is written atomically (image_io.h).
+#pragma once
+#include <glm/glm.hpp>
+
+#include <cstdint>
+#include <filesystem>
+#include <vector>
+
+namespace tessera {
+
+struct Frame {
+    int width = 0;
+    int height = 0;
+    std::vector<glm::vec4> pixels;  // width * height, row 0 at the top
+
+    Frame() = default;
+    Frame(int w, int h, glm::vec4 fill = glm::vec4(0.0f))
+        : width(w), height(h), pixels(size_t(w) * size_t(h), fill) {}
+    glm::vec4& at(int x, int y) { return pixels[size_t(y) * size_t(width) + size_t(x)]; }
+    const glm::vec4& at(int x, int y) const { return pixels[size_t(y) * size_t(width) + size_t(x)]; }
+};
+
+// The display encoding of a frame: RGB through linear_to_srgb, alpha clamped, each channel
+// quantised to `levels` - 1 (255 or 65535) with rounding to nearest.
+std::vector<uint8_t> encode_srgb8(const Frame& frame);
+std::vector<uint16_t> encode_srgb16(const Frame& frame);
+
+// Throws tessera::Error (unwritable path, unknown extension) naming the file.
+void write_frame(const std::filesystem::path& path, const Frame& frame);
+
+}  // namespace tessera

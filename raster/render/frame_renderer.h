@@ -1,0 +1,58 @@
+// One animation frame of an AnimatedScene, start to finish (DESIGN.md "One frame"): animate,
+// bake, visibility (the tile rasterizer, or Embree primary rays), then per tile while it is
+// hot: shade the visible triangles, darken what the lights cannot reach (shadows), blend the
+// transparent triangles in submission order, and run the scene's compute passes (ray-marched
+// terrain and metaballs, fog). The same tile function serves both renderers, so they differ
+// only in how visibility was found.
+//
+// Shadows (--shadows rays): each tile's visible points are tested against every light with
+// Embree occlusion rays (shadow/surface_points.h, embree/shadow_rays.h). A point that faces a
+// light but cannot see it is re-shaded with that light's emission Le set to zero, which is
+// exactly the seed's formula with the light's direct term removed (ambient ka La stays), so
+// shadowed and lit pixels come from the same shading kernel. Points facing away from a light
+// keep the kernel's smooth N.L falloff (no stair-stepped terminator on coarse meshes).
+//
+// Deterministic: tiles never share writes and every pixel depends only on its own inputs.
+#pragma once
+#include <cstdint>
+#include <memory>
+#include <string_view>
+
+#include "raster/output/frame.h"
+#include "raster/rasterizer.h"
+#include "raster/scene_file/scene_build.h"
+
+namespace tessera {
+
+enum class RendererKind { raster, raytrace };
+enum class ShadowMode { none, map, rays };
+
+// Throw std::invalid_argument naming the accepted values.
+RendererKind parse_renderer(std::string_view name);
+ShadowMode parse_shadow_mode(std::string_view name);
+
+struct FrameStats {
+    double animate_ms = 0, bake_ms = 0, bvh_ms = 0, visibility_ms = 0, total_ms = 0;
+    uint64_t triangles = 0;
+    uint64_t shadowed_pixels = 0;
+    RasterStats raster;  // the raster renderer's own stage times (passes_ms: the tile work)
+};
+
+class FrameRenderer {
+public:
+    // Throws std::invalid_argument for a bad size, shadow rays with more than 4 lights, or
+    // a shadow mode this build does not provide.
+    FrameRenderer(AnimatedScene& scene, int width, int height, RendererKind renderer, ShadowMode shadows);
+    ~FrameRenderer();
+    FrameRenderer(const FrameRenderer&) = delete;
+    FrameRenderer& operator=(const FrameRenderer&) = delete;
+
+    // The frame at `time` seconds, linear RGBA.
+    Frame render(float time, FrameStats* stats = nullptr);
+
+private:
+    struct Impl;
+    std::unique_ptr<Impl> impl_;
+};
+
+}  // namespace tessera

@@ -1,0 +1,70 @@
+// Materials: which shading model a surface uses (seeds/000: flat, Gouraud, Phong, NPR toon)
+// and the parameters of the seed's Blinn-Phong formula
+//     L = ka*La + (kd*cos(theta) + ks*cos(delta)^shine) * Le,
+// plus optional textures (a diffuse colour texture modulating kd, a tangent-space normal map
+// as in seeds/004) and an opacity for alpha blending.
+#pragma once
+#include <glm/glm.hpp>
+
+#include <cstdint>
+#include <span>
+#include <string>
+#include <string_view>
+#include <vector>
+
+namespace tessera {
+
+enum class ShadingModel : uint8_t {
+    flat,     // one colour per triangle: the face normal, lit at the triangle's centroid
+    gouraud,  // Blinn-Phong per vertex, the colour interpolated (seed's per-vertex shader)
+    phong,    // Blinn-Phong per pixel with N, V, L interpolated and renormalised
+    toon,     // two diffuse levels, black silhouette (seed's NPR shader)
+};
+
+// nearest and bilinear read the full-resolution level (GL_NEAREST, GL_LINEAR); mipmap reads
+// the nearest mip level bilinearly (GL_LINEAR_MIPMAP_NEAREST); trilinear blends the two
+// nearest levels (GL_LINEAR_MIPMAP_LINEAR).
+enum class TextureFilter : uint8_t { nearest, bilinear, mipmap, trilinear };
+enum class TextureWrap : uint8_t { repeat, clamp };
+
+inline constexpr int32_t kNoTexture = -1;
+
+struct Material {
+    ShadingModel model = ShadingModel::phong;
+    glm::vec3 ka{0.1f};
+    glm::vec3 kd{0.7f};
+    glm::vec3 ks{0.3f};
+    float shine = 32.0f;
+    float opacity = 1.0f;  // < 1: drawn after the opaque pass, blended in submission order
+    int32_t diffuse_texture = kNoTexture;  // index into the scene's textures; modulates kd
+    int32_t normal_texture = kNoTexture;   // tangent-space normal map (per-pixel models only)
+    TextureFilter filter = TextureFilter::trilinear;
+    TextureWrap wrap = TextureWrap::repeat;
+    glm::vec2 uv_scale{1.0f};  // texture coordinates are multiplied by this before sampling
+
+    bool transparent() const { return opacity < 1.0f; }
+};
+
+const char* to_string(ShadingModel model);
+// Throws std::invalid_argument naming the accepted values.
+ShadingModel parse_shading_model(std::string_view name);
+TextureFilter parse_texture_filter(std::string_view name);
+TextureWrap parse_texture_wrap(std::string_view name);
+
+// A parameter as a scene description gives it: numbers ("kd": [0.8, 0.2, 0.1]) or a word
+// ("model": "toon").
+struct MaterialParameter {
+    std::string name;
+    std::vector<float> numbers;
+    std::string word;
+};
+
+// Sets the named parameters on `material` (model first, whatever the order, so the checks
+// below see the final model). Bad values (wrong count, negative shine, opacity outside [0, 1],
+// unknown model name) throw std::invalid_argument. Unknown names and parameters that the
+// material's model does not use are not errors (seeds/003: "a warning, not an error"): one
+// line per such parameter is returned for the caller to print.
+std::vector<std::string> set_material_parameters(Material& material,
+                                                 std::span<const MaterialParameter> parameters);
+
+}  // namespace tessera

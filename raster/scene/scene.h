@@ -1,0 +1,64 @@
+// The scene model of seeds/000 (Scene, Object, Material, Texture, Geometry, Camera, Light),
+// done the data-oriented way: objects refer to shared geometry and to materials by index, and
+// each frame is baked into ONE world-space Mesh plus a material id per triangle. Everything
+// downstream (the tile rasterizer, the Embree ray caster, shading) reads only that bake, so
+// the two renderers see identical work and objects never disturb one another (the seed's
+// "render state passed by value").
+#pragma once
+#include <functional>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "raster/camera.h"
+#include "raster/mesh.h"
+#include "raster/scene/light.h"
+#include "raster/scene/material.h"
+#include "raster/scene/transform.h"
+#include "raster/shade/background.h"
+#include "raster/texture/texture.h"
+
+namespace tessera {
+
+struct Object {
+    std::string name;
+    std::shared_ptr<const Mesh> geometry;  // model space; shared between instances
+    uint32_t material = 0;                 // index into Scene::materials
+    Transform transform;
+    // The seed's Animate(): called with the scene time (seconds) before a frame is baked; may
+    // change the transform or replace the geometry (a waving flag, a writhing snake).
+    std::function<void(Object&, float time)> animate;
+};
+
+struct Scene {
+    Camera camera;
+    std::vector<Object> objects;
+    std::vector<Material> materials;
+    std::vector<Texture> textures;  // Material::diffuse_texture / normal_texture index these
+    std::vector<Light> lights;
+    Background background;
+
+    // Runs every object's animate hook for time t (objects in parallel: hooks only touch
+    // their own object).
+    void animate(float time);
+    // Throws std::invalid_argument naming the first object or material that refers to
+    // something missing (no geometry, material or texture index out of range).
+    void validate() const;
+};
+
+// One frame's geometry in world space.
+struct BakedScene {
+    Mesh mesh;                               // normals, uvs present whenever any object has them
+    std::vector<uint32_t> triangle_material;  // one per triangle
+    std::vector<uint32_t> vertex_material;    // one per vertex (Gouraud colours per vertex)
+};
+
+// Applies each object's model matrix to its vertices (normals by the inverse transpose,
+// renormalised), concatenating objects in order, so triangle ids follow the submission order
+// of objects. Objects and big vertex ranges run in parallel; the result does not depend on
+// the thread count. A mirroring transform (negative determinant) has its triangles' winding
+// reversed so that front faces stay counter-clockwise. Objects without normals or uvs get
+// zeros there (shading then uses the face normal). Calls validate() first.
+BakedScene bake(const Scene& scene);
+
+}  // namespace tessera

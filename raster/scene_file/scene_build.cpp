@@ -1,0 +1,276 @@
+#include "raster/scene_file/scene_build.h"
+
+#include <glm/gtc/quaternion.hpp>
+
+#include <algorithm>
+#include <map>
+#include <memory>
+
+#include "procedural/normal_map.h"
+#include "procedural/rd_initial.h"
+#include "procedural/rd_presets.h"
+#include "procedural/reaction_diffusion.h"
+#include "raster/geometry/box.h"
+#include "raster/geometry/param_surface.h"
+#include "raster/geometry/surfaces.h"
+#include "raster/scene_file/scene_file_error.h"
+#include "raster/scene_file/snake.h"
+
+namespace tessera {
+namespace {
+
+namespace tp = tessera::procedural;
+
+Texture reaction_diffusion_texture(const TextureSpec& t) {
+    const tp::RdPreset* preset = tp::find_rd_preset(t.preset);
+    tp::GrayScott params;
+    params.feed = preset->feed;
+    params.kill = preset->kill;
+    params.anisotropy = t.anisotropy;
+    tp::ReactionDiffusion rd(params, tp::rd_initial_noise(t.size, t.size, t.seed, 12.0f));
+    rd.step(t.steps);
+    const std::vector<uint8_t> rgb =
+        t.ramp.empty() ? tp::rd_colorize(rd.state()) : tp::rd_colorize(rd.state(), t.ramp);
+    // rd_colorize quantises the ramp's linear values to bytes; they stay linear here.
+    std::vector<glm::vec4> texels(size_t(t.size) * size_t(t.size));
+    for (size_t i = 0; i < texels.size(); ++i)
+        texels[i] = glm::vec4(rgb[3 * i] / 255.0f, rgb[3 * i + 1] / 255.0f, rgb[3 * i + 2] / 255.0f, 1.0f);
+    return Texture(t.size, t.size, std::move(texels));
+}
+
+Texture relief_normal_texture(const TextureSpec& t) {
+    const tp::Grid heights = tp::generate_heightfield(t.size, t.size, t.relief);
+    const tp::NormalMap normals = tp::normal_map(heights, t.strength, tp::Boundary::periodic);
+    std::vector<glm::vec4> texels(size_t(t.size) * size_t(t.size));
+    for (size_t i = 0; i < texels.size(); ++i)
+        texels[i] = glm::vec4(glm::vec3(normals.xyz[3 * i], normals.xyz[3 * i + 1], normals.xyz[3 * i + 2]) * 0.5f + 0.5f,
+                              1.0f);
+    return Texture(t.size, t.size, std::move(texels));
+}
+
+Texture build_texture(const TextureSpec& t, const std::filesystem::path& scene_file) {
+    switch (t.kind) {
+        case TextureSpec::Kind::reaction_diffusion: return reaction_diffusion_texture(t);
+        case TextureSpec::Kind::relief_normals: return relief_normal_texture(t);
+        case TextureSpec::Kind::file: break;
+    }
+    const std::filesystem::path path = t.file.is_absolute() ? t.file : scene_file.parent_path() / t.file;
+    try {
+        return load_texture(path, t.encoding);
+    } catch (const Error& e) {
+        throw SceneFileError(scene_file.string() + ": /textures/" + t.name + ": " + e.what());
+    }
+}
+
+// A heightfield object's samples, kept for the snakes that lie on it.
+struct Ground {
+    tp::Grid heights;
+    HeightfieldSpec spec;
+    glm::vec3 offset{0.0f};
+
+    // Bilinear in the samples, the same surface the triangles interpolate (up to the diagonal).
+    float height(float x, float z) const {
+        const float u = ((x - offset.x) / spec.size.x + 0.5f) * float(heights.width - 1);
+        const float v = ((z - offset.z) / spec.size.y + 0.5f) * float(heights.height - 1);
+        const float cu = std::clamp(u, 0.0f, float(heights.width - 1));
+        const float cv = std::clamp(v, 0.0f, float(heights.height - 1));
+        const int i = std::min(int(cu), heights.width - 2), j = std::min(int(cv), heights.height - 2);
+        const float fu = cu - float(i), fv = cv - float(j);
+        const float h = (heights.at(i, j) * (1 - fu) + heights.at(i + 1, j) * fu) * (1 - fv) +
+                        (heights.at(i, j + 1) * (1 - fu) + heights.at(i + 1, j + 1) * fu) * fv;
+        return offset.y + h * spec.height;
+    }
+};
+
+// The transform's rotation followed by `spin` rad/s about `axis` after `time` seconds.
+Transform spun(const Transform& base, glm::vec3 axis, float spin, float time) {
+    Transform t = base;
+    const glm::quat q = glm::angleAxis(spin * time, glm::normalize(axis)) *
+                        (base.angle != 0.0f ? glm::angleAxis(base.angle, glm::normalize(base.axis)) : glm::quat(1, 0, 0, 0));
+    t.angle = glm::angle(q);
+    t.axis = t.angle != 0.0f ? glm::axis(q) : glm::vec3(0.0f, 1.0f, 0.0f);
+    return t;
+}
+
+void set_rotation(Transform& t, const glm::quat& q) {
+    t.angle = glm::angle(q);
+    t.axis = t.angle != 0.0f ? glm::axis(q) : glm::vec3(0.0f, 1.0f, 0.0f);
+}
+
+uint32_t material_index(const SceneSpec& spec, const std::string& name) {
+    for (size_t i = 0; i < spec.materials.size(); ++i)
+        if (spec.materials[i].name == name) return uint32_t(i);
+    throw std::invalid_argument("material '" + name + "' is not defined");
+}
+
+void add_snake(Scene& scene, const SceneSpec& spec, const ObjectSpec& o,
+               const std::shared_ptr<const Ground>& ground) {
+    const SnakeSpec snake = o.snake;
+    // Without a heightfield the snake lies on the plane y = its transform's translation.y.
+    const float plane = o.transform.translation.y;
+    const GroundHeight height = ground ? GroundHeight([ground](float x, float z) { return ground->height(x, z); })
+                                       : GroundHeight([plane](float, float) { return plane; });
+    const uint32_t skin = material_index(spec, o.material);
+    const uint32_t eye = snake.eye_material.empty() ? skin : material_index(spec, snake.eye_material);
+
+    Object body{o.name, std::make_shared<const Mesh>(snake_body(snake, snake_spine(snake, 0.0f, height))), skin, {}, {}};
+    body.animate = [snake, height](Object& self, float time) {
+        self.geometry = std::make_shared<const Mesh>(snake_body(snake, snake_spine(snake, time, height)));
+    };
+    scene.objects.push_back(std::move(body));
+
+    const auto place_head = [snake, height](Object& self, float time) {
+        const SnakeHead head = snake_head(snake, snake_spine(snake, time, height));
+        self.transform.translation = head.centre;
+        set_rotation(self.transform, head.orientation);
+    };
+    Object head{o.name + " head", nullptr, skin, {}, place_head};
+    const SnakeHead head0 = snake_head(snake, snake_spine(snake, 0.0f, height));
+    head.geometry = std::make_shared<const Mesh>(tessellate(ellipsoid_surface(glm::vec3(0.0f), head0.radii), 32, 16));
+    place_head(head, 0.0f);
+    scene.objects.push_back(std::move(head));
+
+    const auto eye_mesh = std::make_shared<const Mesh>(
+        tessellate(sphere_surface(glm::vec3(0.0f), snake_eye_radius(snake)), 16, 8));
+    for (float side : {-1.0f, 1.0f}) {
+        const auto place_eye = [snake, height, side](Object& self, float time) {
+            const SnakeHead head = snake_head(snake, snake_spine(snake, time, height));
+            self.transform.translation = head.centre + head.orientation * snake_eye_offset(head, side);
+            set_rotation(self.transform, head.orientation);
+        };
+        Object e{o.name + (side < 0 ? " left eye" : " right eye"), eye_mesh, eye, {}, place_eye};
+        place_eye(e, 0.0f);
+        scene.objects.push_back(std::move(e));
+    }
+}
+
+}  // namespace
+
+Camera camera_at(const CameraSpec& spec, float time, float aspect) {
+    Camera c = spec.camera;
+    c.aspect = aspect;
+    const auto& k = spec.keys;
+    if (!k.empty()) {
+        if (time <= k.front().time || k.size() == 1) {
+            c.eye = k.front().eye, c.lookat = k.front().lookat, c.fovy_deg = k.front().fovy_deg;
+        } else if (time >= k.back().time) {
+            c.eye = k.back().eye, c.lookat = k.back().lookat, c.fovy_deg = k.back().fovy_deg;
+        } else {
+            size_t i = 0;
+            while (time >= k[i + 1].time) ++i;
+            const float t = (time - k[i].time) / (k[i + 1].time - k[i].time);
+            const CameraKey& p0 = k[i == 0 ? 0 : i - 1];
+            const CameraKey& p1 = k[i];
+            const CameraKey& p2 = k[i + 1];
+            const CameraKey& p3 = k[std::min(i + 2, k.size() - 1)];
+            // Uniform Catmull-Rom: 0.5 (2 p1 + (p2 - p0) t + (2p0 - 5p1 + 4p2 - p3) t^2 + (3p1 - p0 - 3p2 + p3) t^3).
+            const auto cr = [t](auto a, auto b, auto cc, auto d) {
+                return 0.5f * (2.0f * b + (cc - a) * t + (2.0f * a - 5.0f * b + 4.0f * cc - d) * t * t +
+                               (3.0f * b - a - 3.0f * cc + d) * t * t * t);
+            };
+            c.eye = cr(p0.eye, p1.eye, p2.eye, p3.eye);
+            c.lookat = cr(p0.lookat, p1.lookat, p2.lookat, p3.lookat);
+            c.fovy_deg = cr(p0.fovy_deg, p1.fovy_deg, p2.fovy_deg, p3.fovy_deg);
+        }
+    }
+    if (spec.orbit != 0.0f) {
+        const glm::quat q = glm::angleAxis(spec.orbit * time, glm::vec3(0.0f, 1.0f, 0.0f));
+        c.eye = c.lookat + q * (c.eye - c.lookat);
+    }
+    return c;
+}
+
+void AnimatedScene::set_time(float time, float aspect) {
+    scene.camera = camera_at(spec.camera, time, aspect);
+    scene.animate(time);
+}
+
+AnimatedScene build_scene(SceneSpec spec) {
+    AnimatedScene out;
+    Scene& scene = out.scene;
+    scene.lights = spec.lights;
+    scene.background = spec.background;
+    scene.camera = spec.camera.camera;
+
+    std::map<std::string, int32_t> texture_index;
+    for (const TextureSpec& t : spec.textures) {
+        texture_index[t.name] = int32_t(scene.textures.size());
+        scene.textures.push_back(build_texture(t, spec.file));
+    }
+    for (const MaterialSpec& m : spec.materials) {
+        Material material = m.material;
+        if (!m.diffuse_texture.empty()) material.diffuse_texture = texture_index.at(m.diffuse_texture);
+        if (!m.normal_texture.empty()) material.normal_texture = texture_index.at(m.normal_texture);
+        scene.materials.push_back(material);
+    }
+
+    std::map<std::string, std::shared_ptr<const Ground>> grounds;
+    for (const ObjectSpec& o : spec.objects) {
+        if (o.shape == ObjectSpec::Shape::snake) continue;  // after every ground exists
+        Object object{o.name, nullptr, material_index(spec, o.material), o.transform, {}};
+        const glm::ivec2 g = o.tessellation;
+        switch (o.shape) {
+            case ObjectSpec::Shape::sphere:
+                object.geometry = std::make_shared<const Mesh>(tessellate(sphere_surface(o.centre, o.radius), g.x, g.y));
+                break;
+            case ObjectSpec::Shape::ellipsoid:
+                object.geometry = std::make_shared<const Mesh>(tessellate(ellipsoid_surface(o.centre, o.radii), g.x, g.y));
+                break;
+            case ObjectSpec::Shape::torus:
+                object.geometry = std::make_shared<const Mesh>(tessellate(torus_surface(o.major, o.minor), g.x, g.y));
+                break;
+            case ObjectSpec::Shape::flag: {
+                const ObjectSpec flag = o;
+                object.geometry = std::make_shared<const Mesh>(tessellate(
+                    flag_surface(o.flag_size.x, o.flag_size.y, o.flag_depth, o.flag_waves, 0.0f), g.x, g.y));
+                if (o.wave_speed != 0.0f)
+                    object.animate = [flag](Object& self, float time) {
+                        self.geometry = std::make_shared<const Mesh>(tessellate(
+                            flag_surface(flag.flag_size.x, flag.flag_size.y, flag.flag_depth, flag.flag_waves,
+                                         flag.wave_speed * time),
+                            flag.tessellation.x, flag.tessellation.y));
+                    };
+                break;
+            }
+            case ObjectSpec::Shape::box:
+                object.geometry = std::make_shared<const Mesh>(box_mesh(0.5f * o.box_size));
+                break;
+            case ObjectSpec::Shape::heightfield: {
+                auto ground = std::make_shared<Ground>();
+                ground->spec = o.heightfield;
+                ground->offset = o.transform.translation;
+                ground->heights = tp::generate_heightfield(o.heightfield.samples.x, o.heightfield.samples.y,
+                                                           o.heightfield.relief);
+                object.geometry = std::make_shared<const Mesh>(tessellate(
+                    heightfield_surface(ground->heights.values, ground->heights.width, ground->heights.height,
+                                        o.heightfield.size, o.heightfield.height),
+                    ground->heights.width - 1, ground->heights.height - 1));
+                object.transform = Transform{};  // snakes sample the ground by translation only
+                object.transform.translation = o.transform.translation;
+                grounds[o.name] = ground;
+                break;
+            }
+            case ObjectSpec::Shape::snake: break;
+        }
+        if (o.spin != 0.0f) {
+            const Transform base = o.transform;
+            const glm::vec3 axis = o.spin_axis;
+            const float spin = o.spin;
+            auto inner = object.animate;
+            object.animate = [base, axis, spin, inner](Object& self, float time) {
+                if (inner) inner(self, time);
+                self.transform = spun(base, axis, spin, time);
+            };
+        }
+        scene.objects.push_back(std::move(object));
+    }
+    for (const ObjectSpec& o : spec.objects)
+        if (o.shape == ObjectSpec::Shape::snake)
+            add_snake(scene, spec, o, o.snake.ground.empty() ? nullptr : grounds.at(o.snake.ground));
+
+    out.spec = std::move(spec);
+    scene.validate();
+    return out;
+}
+
+}  // namespace tessera

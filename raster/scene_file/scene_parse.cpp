@@ -1,0 +1,513 @@
+#include "raster/scene_file/scene_parse.h"
+
+#include <glm/gtc/constants.hpp>
+
+#include <fstream>
+#include <sstream>
+
+#include "procedural/rd_presets.h"
+#include "raster/scene_file/json_reader.h"
+
+namespace tessera {
+namespace {
+
+using scene_file::JsonNode;
+
+float radians_of(const JsonNode& node, const std::string& key, float fallback_rad) {
+    // Angles are written in degrees in scene files (people think in degrees); stored radians.
+    return glm::radians(node.number(key, glm::degrees(fallback_rad)));
+}
+
+float positive(const JsonNode& node, const std::string& key, float fallback) {
+    const float v = node.number(key, fallback);
+    if (!(v > 0.0f)) node.at(key).fail("must be positive");
+    return v;
+}
+
+int at_least(const JsonNode& node, const std::string& key, int fallback, int low, int high) {
+    const int v = node.integer(key, fallback);
+    if (v < low || v > high)
+        node.at(key).fail("must lie in " + std::to_string(low) + ".." + std::to_string(high));
+    return v;
+}
+
+glm::ivec2 grid_of(const JsonNode& node, const std::string& key, glm::ivec2 fallback, int high) {
+    const auto n = node.find(key);
+    if (!n) return fallback;
+    if (!n->is_array() || n->raw().size() != 2) n->fail("expected an array of 2 integers");
+    const auto e = n->elements();
+    const glm::ivec2 v{e[0].as_integer(), e[1].as_integer()};
+    if (v.x < 1 || v.y < 1 || v.x > high || v.y > high)
+        n->fail("each count must lie in 1.." + std::to_string(high));
+    return v;
+}
+
+Camera parse_camera_pose(const JsonNode& n, Camera c) {
+    c.eye = n.vec3("eye", c.eye);
+    c.lookat = n.vec3("lookat", c.lookat);
+    c.up = n.vec3("up", c.up);
+    c.fovy_deg = n.number("fov", c.fovy_deg);
+    if (!(c.fovy_deg > 0.0f && c.fovy_deg < 179.0f)) n.at("fov").fail("must lie in (0, 179) degrees");
+    c.near = n.number("near", c.near);
+    c.far = n.number("far", c.far);
+    if (n.has("near") || n.has("far"))
+        if (!(c.near > 0.0f && c.far > c.near)) n.fail("needs 0 < near < far");
+    return c;
+}
+
+CameraSpec parse_camera(const JsonNode& n) {
+    n.expect_object();
+    CameraSpec spec;
+    spec.camera = parse_camera_pose(n, spec.camera);
+    spec.orbit = glm::radians(n.number("orbit", 0.0f));  // degrees per second
+    if (const auto keys = n.find("keyframes")) {
+        for (const JsonNode& k : keys->elements()) {
+            k.expect_object();
+            CameraKey key;
+            key.time = k.at("time").as_number();
+            key.eye = k.vec3("eye", spec.camera.eye);
+            key.lookat = k.vec3("lookat", spec.camera.lookat);
+            key.fovy_deg = k.number("fov", spec.camera.fovy_deg);
+            if (!spec.keys.empty() && !(key.time > spec.keys.back().time))
+                k.at("time").fail("keyframe times must increase");
+            spec.keys.push_back(key);
+            k.finish();
+        }
+    }
+    n.finish();
+    return spec;
+}
+
+Background parse_background(const JsonNode& n) {
+    n.expect_object();
+    Background b;
+    const std::string type = n.string("type", "colour");
+    if (type == "colour") {
+        b.kind = Background::Kind::colour;
+        b.colour = n.vec3("colour", b.colour);
+    } else if (type == "sky") {
+        b.kind = Background::Kind::sky;
+        b.sky.zenith = n.vec3("zenith", b.sky.zenith);
+        b.sky.horizon = n.vec3("horizon", b.sky.horizon);
+        b.sky.ground = n.vec3("ground", b.sky.ground);
+        b.sky.sun_direction = n.vec3("sun_direction", b.sky.sun_direction);
+        b.sky.sun = n.vec3("sun", b.sky.sun);
+    } else {
+        n.at("type").fail("unknown background '" + type + "' (expected colour or sky)");
+    }
+    n.finish();
+    return b;
+}
+
+Light parse_light(const JsonNode& n) {
+    n.expect_object();
+    Light light;
+    if (n.has("position") == n.has("direction"))
+        n.fail("a light needs exactly one of 'position' (point light) or 'direction' (towards a distant light)");
+    if (n.has("position")) light.position = glm::vec4(n.vec3("position", {}), 1.0f);
+    else {
+        const glm::vec3 d = n.vec3("direction", {});
+        if (glm::length(d) == 0.0f) n.at("direction").fail("must not be zero");
+        light.position = glm::vec4(d, 0.0f);
+    }
+    light.La = n.vec3("La", light.La);
+    light.Le = n.vec3("Le", light.Le);
+    n.finish();
+    return light;
+}
+
+procedural::Relief parse_relief(const JsonNode& n, const std::string& key) {
+    const std::string r = n.string(key, "fbm");
+    if (r == "fbm") return procedural::Relief::fbm;
+    if (r == "ridged") return procedural::Relief::ridged;
+    if (r == "warped") return procedural::Relief::warped;
+    if (r == "dunes") return procedural::Relief::dunes;
+    n.at(key).fail("unknown relief '" + r + "' (expected fbm, ridged, warped or dunes)");
+}
+
+procedural::Dunes parse_dunes(const JsonNode& n, procedural::Dunes d) {
+    d.wind = n.vec2("wind", d.wind);
+    if (glm::length(d.wind) == 0.0f) n.at("wind").fail("must not be zero");
+    d.wind = glm::normalize(d.wind);
+    d.wavelength = positive(n, "wavelength", d.wavelength);
+    d.lee_fraction = n.number("lee_fraction", d.lee_fraction);
+    d.sinuosity = n.number("sinuosity", d.sinuosity);
+    d.ripple_wavelength = positive(n, "ripple_wavelength", d.ripple_wavelength);
+    d.ripple_amplitude = n.number("ripple_amplitude", d.ripple_amplitude);
+    return d;
+}
+
+// The heightfield generator's settings ("relief", "octaves", "cells", "seed", dune keys).
+procedural::HeightfieldParams parse_heightfield_params(const JsonNode& n, procedural::HeightfieldParams p) {
+    p.relief = parse_relief(n, "relief");
+    p.fractal.octaves = at_least(n, "octaves", p.fractal.octaves, 1, 24);
+    p.fractal.gain = n.number("gain", p.fractal.gain);
+    p.fractal.seed = uint32_t(at_least(n, "seed", int(p.fractal.seed), 0, 1 << 30));
+    p.cells = at_least(n, "cells", p.cells, 1, 4096);
+    p.warp = n.number("warp", p.warp);
+    p.dunes = parse_dunes(n, p.dunes);
+    p.dunes.seed = p.fractal.seed;
+    return p;
+}
+
+TextureSpec parse_texture(const std::string& name, const JsonNode& n) {
+    n.expect_object();
+    TextureSpec t;
+    t.name = name;
+    const std::string type = n.at("type").as_string();
+    if (type == "file") {
+        t.kind = TextureSpec::Kind::file;
+        t.file = n.at("file").as_string();
+        const std::string enc = n.string("encoding", "srgb");
+        if (enc == "srgb") t.encoding = TexelEncoding::srgb;
+        else if (enc == "linear") t.encoding = TexelEncoding::linear;
+        else n.at("encoding").fail("expected srgb or linear");
+    } else if (type == "reaction_diffusion") {
+        t.kind = TextureSpec::Kind::reaction_diffusion;
+        t.preset = n.string("preset", t.preset);
+        if (!procedural::find_rd_preset(t.preset))
+            n.at("preset").fail("unknown preset '" + t.preset + "' (expected " + procedural::rd_preset_names() + ")");
+        t.size = at_least(n, "size", t.size, 8, 4096);
+        t.steps = at_least(n, "steps", t.steps, 0, 1000000);
+        t.seed = uint32_t(at_least(n, "seed", int(t.seed), 0, 1 << 30));
+        t.anisotropy = n.number("anisotropy", t.anisotropy);
+        if (const auto ramp = n.find("ramp")) {
+            for (const JsonNode& stop : ramp->elements()) {
+                stop.expect_object();
+                const float at = stop.at("at").as_number();
+                const glm::vec3 c = stop.at("colour").as_vec3();
+                if (!t.ramp.empty() && !(at > t.ramp.back().position))
+                    stop.at("at").fail("ramp positions must increase");
+                t.ramp.push_back({at, {c.x, c.y, c.z}});
+                stop.finish();
+            }
+            if (t.ramp.size() < 2) ramp->fail("a ramp needs at least 2 stops");
+        }
+    } else if (type == "relief_normals") {
+        t.kind = TextureSpec::Kind::relief_normals;
+        t.size = at_least(n, "size", t.size, 8, 4096);
+        t.relief = parse_heightfield_params(n, t.relief);
+        t.strength = positive(n, "strength", t.strength);
+    } else {
+        n.at("type").fail("unknown texture type '" + type + "' (expected file, reaction_diffusion or relief_normals)");
+    }
+    n.finish();
+    return t;
+}
+
+MaterialSpec parse_material(const std::string& name, const JsonNode& n) {
+    n.expect_object();
+    MaterialSpec m;
+    m.name = name;
+    // Each parameter's JSON type is checked here (so the error names its path); the values'
+    // meaning and whether the model uses them is set_material_parameters' business.
+    std::vector<MaterialParameter> params;
+    for (const char* key : {"ka", "kd", "ks"})
+        if (const auto v = n.find(key)) params.push_back({key, [&] { const glm::vec3 c = v->as_vec3(); return std::vector<float>{c.x, c.y, c.z}; }(), {}});
+    for (const char* key : {"shine", "opacity"})
+        if (const auto v = n.find(key)) params.push_back({key, {v->as_number()}, {}});
+    if (const auto v = n.find("uv_scale")) {
+        const glm::vec2 s = v->as_vec2();
+        params.push_back({"uv_scale", {s.x, s.y}, {}});
+    }
+    for (const char* key : {"model", "filter", "wrap"})
+        if (const auto v = n.find(key)) params.push_back({key, {}, v->as_string()});
+    m.diffuse_texture = n.string("diffuse_texture", "");
+    m.normal_texture = n.string("normal_texture", "");
+    try {
+        for (const std::string& w : set_material_parameters(m.material, params)) n.warn(w);
+    } catch (const std::invalid_argument& e) {
+        n.fail(e.what());
+    }
+    if (!m.normal_texture.empty() && (m.material.model == ShadingModel::gouraud || m.material.model == ShadingModel::flat))
+        n.warn("'normal_texture' is not used by the " + std::string(to_string(m.material.model)) + " model; ignored");
+    n.finish();
+    return m;
+}
+
+Transform parse_transform(const JsonNode& n) {
+    n.expect_object();
+    Transform t;
+    if (const auto s = n.find("scale")) {
+        if (s->raw().is_number()) t.scale = glm::vec3(s->as_number());
+        else t.scale = s->as_vec3();
+        if (t.scale.x == 0.0f || t.scale.y == 0.0f || t.scale.z == 0.0f) s->fail("scale must not be zero");
+    }
+    t.axis = n.vec3("axis", t.axis);
+    t.angle = radians_of(n, "angle", 0.0f);
+    if (t.angle != 0.0f && glm::length(t.axis) == 0.0f) n.at("axis").fail("must not be zero");
+    t.translation = n.vec3("translate", t.translation);
+    n.finish();
+    return t;
+}
+
+SnakeSpec parse_snake(const JsonNode& n, SnakeSpec s) {
+    s.centre = n.vec2("centre", s.centre);
+    s.path_radii = n.vec2("path_radii", s.path_radii);
+    if (!(s.path_radii.x > 0.0f && s.path_radii.y > 0.0f)) n.at("path_radii").fail("must be positive");
+    s.path_angle = radians_of(n, "path_angle", s.path_angle);
+    s.phase = radians_of(n, "phase", s.phase);
+    s.speed = n.number("speed", s.speed);
+    s.length = positive(n, "length", s.length);
+    s.width = positive(n, "width", s.width);
+    s.height_ratio = positive(n, "height_ratio", s.height_ratio);
+    s.control_points = at_least(n, "control_points", s.control_points, 4, 64);
+    s.wiggle = n.number("wiggle", s.wiggle);
+    s.wiggle_period = positive(n, "wiggle_period", s.wiggle_period);
+    s.period_spread = n.number("period_spread", s.period_spread);
+    s.wave_phase = n.number("wave_phase", s.wave_phase);
+    s.tessellation = grid_of(n, "tessellation", s.tessellation, 4096);
+    if (s.tessellation.y < 3) n.at("tessellation").fail("needs at least 3 segments around the body");
+    s.ground = n.string("ground", s.ground);
+    s.eye_material = n.string("eye_material", s.eye_material);
+    return s;
+}
+
+ObjectSpec parse_object(const JsonNode& n, size_t index) {
+    n.expect_object();
+    ObjectSpec o;
+    o.name = n.string("name", "object " + std::to_string(index));
+    o.material = n.at("material").as_string();
+    if (const auto t = n.find("transform")) o.transform = parse_transform(*t);
+    if (const auto spin = n.find("spin")) {
+        spin->expect_object();
+        o.spin_axis = spin->vec3("axis", o.spin_axis);
+        if (glm::length(o.spin_axis) == 0.0f) spin->at("axis").fail("must not be zero");
+        o.spin = glm::radians(spin->number("speed", 0.0f));  // degrees per second
+        spin->finish();
+    }
+    const std::string type = n.at("type").as_string();
+    o.tessellation = grid_of(n, "tessellation", o.tessellation, 4096);
+    if (type == "sphere") {
+        o.shape = ObjectSpec::Shape::sphere;
+        o.centre = n.vec3("centre", o.centre);
+        o.radius = positive(n, "radius", o.radius);
+    } else if (type == "ellipsoid") {
+        o.shape = ObjectSpec::Shape::ellipsoid;
+        o.centre = n.vec3("centre", o.centre);
+        o.radii = n.vec3("radii", o.radii);
+        if (!(o.radii.x > 0.0f && o.radii.y > 0.0f && o.radii.z > 0.0f)) n.at("radii").fail("must be positive");
+    } else if (type == "torus") {
+        o.shape = ObjectSpec::Shape::torus;
+        o.major = positive(n, "major", o.major);
+        o.minor = positive(n, "minor", o.minor);
+    } else if (type == "flag") {
+        o.shape = ObjectSpec::Shape::flag;
+        o.flag_size = n.vec2("size", o.flag_size);
+        o.flag_depth = n.number("depth", o.flag_depth);
+        o.flag_waves = n.number("waves", o.flag_waves);
+        o.wave_speed = n.number("wave_speed", o.wave_speed);
+    } else if (type == "box") {
+        o.shape = ObjectSpec::Shape::box;
+        o.box_size = n.vec3("size", o.box_size);
+        if (!(o.box_size.x > 0.0f && o.box_size.y > 0.0f && o.box_size.z > 0.0f)) n.at("size").fail("must be positive");
+    } else if (type == "heightfield") {
+        o.shape = ObjectSpec::Shape::heightfield;
+        HeightfieldSpec& h = o.heightfield;
+        h.relief = parse_heightfield_params(n, h.relief);
+        h.samples = grid_of(n, "samples", h.samples, 8192);
+        if (h.samples.x < 2 || h.samples.y < 2) n.at("samples").fail("needs at least 2 x 2 samples");
+        h.size = n.vec2("size", h.size);
+        if (!(h.size.x > 0.0f && h.size.y > 0.0f)) n.at("size").fail("must be positive");
+        h.height = n.number("height", h.height);
+    } else if (type == "snake") {
+        o.shape = ObjectSpec::Shape::snake;
+        o.snake = parse_snake(n, o.snake);
+    } else {
+        n.at("type").fail("unknown object type '" + type +
+                          "' (expected sphere, ellipsoid, torus, flag, box, heightfield or snake)");
+    }
+    n.finish();
+    return o;
+}
+
+march::SurfaceMaterial parse_surface_material(const JsonNode& n, march::SurfaceMaterial m) {
+    n.expect_object();
+    m.diffuse = n.vec3("kd", m.diffuse);
+    m.specular = n.vec3("ks", m.specular);
+    m.shininess = n.number("shine", m.shininess);
+    m.ambient = n.vec3("ka", m.ambient);
+    m.reflectivity = n.number("reflectivity", m.reflectivity);
+    if (!(m.reflectivity >= 0.0f && m.reflectivity <= 1.0f)) n.at("reflectivity").fail("must lie in [0, 1]");
+    n.finish();
+    return m;
+}
+
+march::MarchSettings parse_march(const JsonNode& n, march::MarchSettings s) {
+    const std::string strategy = n.string("strategy", "uniform");
+    if (strategy == "uniform") s.strategy = march::StepStrategy::uniform;
+    else if (strategy == "geometric") s.strategy = march::StepStrategy::geometric;
+    else n.at("strategy").fail("expected uniform or geometric");
+    s.steps = at_least(n, "steps", s.steps, 1, 4096);
+    if (n.has("max_step")) s.max_step = positive(n, "max_step", 1.0f);
+    s.growth = n.number("growth", s.growth);
+    s.tolerance = positive(n, "tolerance", s.tolerance);
+    try {
+        s.validate();
+    } catch (const std::invalid_argument& e) {
+        n.fail(e.what());
+    }
+    return s;
+}
+
+PassSpec parse_pass(const JsonNode& n) {
+    n.expect_object();
+    PassSpec p;
+    const std::string type = n.at("type").as_string();
+    if (type == "terrain") {
+        p.kind = PassSpec::Kind::terrain;
+        procedural::TerrainParams& t = p.terrain;
+        t.relief = parse_relief(n, "relief");
+        t.fractal.octaves = at_least(n, "octaves", t.fractal.octaves, 1, 24);
+        t.fractal.gain = n.number("gain", t.fractal.gain);
+        t.fractal.seed = uint32_t(at_least(n, "seed", 0, 0, 1 << 30));
+        t.frequency = positive(n, "frequency", t.frequency);
+        t.amplitude = positive(n, "amplitude", t.amplitude);
+        t.base = n.number("base", t.base);
+        t.warp = n.number("warp", t.warp);
+        t.dunes = parse_dunes(n, t.dunes);
+        p.settings = parse_march(n, p.settings);
+        if (const auto m = n.find("material")) p.material = parse_surface_material(*m, p.material);
+    } else if (type == "metaballs") {
+        p.kind = PassSpec::Kind::metaballs;
+        p.count = at_least(n, "count", p.count, 1, 4096);
+        p.ball_radius = positive(n, "radius", p.ball_radius);
+        p.orbit_scale = positive(n, "orbit_scale", p.orbit_scale);
+        p.offset = n.vec3("offset", p.offset);
+        const std::string kernel = n.string("kernel", "wyvill");
+        if (kernel == "wyvill") p.style.kernel = march::MetaballKernel::wyvill;
+        else if (kernel == "perlin") p.style.kernel = march::MetaballKernel::perlin;
+        else if (kernel == "blinn") p.style.kernel = march::MetaballKernel::blinn;
+        else n.at("kernel").fail("expected wyvill, perlin or blinn");
+        p.style.threshold = positive(n, "threshold", p.style.threshold);
+        p.settings = parse_march(n, p.settings);
+        if (const auto m = n.find("material")) p.material = parse_surface_material(*m, p.material);
+    } else if (type == "fog") {
+        p.kind = PassSpec::Kind::fog;
+        p.fog.density = n.vec3("density", p.fog.density);
+        p.fog.colour = n.vec3("colour", p.fog.colour);
+        p.fog.falloff = n.number("falloff", p.fog.falloff);
+        p.fog.base_height = n.number("base_height", p.fog.base_height);
+        try {
+            p.fog.validate();
+        } catch (const std::invalid_argument& e) {
+            n.fail(e.what());
+        }
+    } else {
+        n.at("type").fail("unknown pass type '" + type + "' (expected terrain, metaballs or fog)");
+    }
+    n.finish();
+    return p;
+}
+
+template <class Spec>
+void check_unique(const std::vector<Spec>& specs, const JsonNode& n, const char* what) {
+    for (size_t i = 0; i < specs.size(); ++i)
+        for (size_t j = 0; j < i; ++j)
+            if (specs[i].name == specs[j].name) n.fail(std::string("two ") + what + " are named '" + specs[i].name + "'");
+}
+
+template <class Spec>
+bool named(const std::vector<Spec>& specs, const std::string& name) {
+    for (const Spec& s : specs)
+        if (s.name == name) return true;
+    return false;
+}
+
+// Cross references: every name used must exist.
+void check_references(const SceneSpec& s, const JsonNode& root) {
+    const auto objects = root.at("objects").elements();
+    for (size_t i = 0; i < s.materials.size(); ++i) {
+        const MaterialSpec& m = s.materials[i];
+        for (const std::string* t : {&m.diffuse_texture, &m.normal_texture})
+            if (!t->empty() && !named(s.textures, *t))
+                root.at("materials").at(m.name).fail("texture '" + *t + "' is not defined in /textures");
+    }
+    for (size_t i = 0; i < s.objects.size(); ++i) {
+        const ObjectSpec& o = s.objects[i];
+        if (!named(s.materials, o.material))
+            objects[i].at("material").fail("material '" + o.material + "' is not defined in /materials");
+        if (o.shape != ObjectSpec::Shape::snake) continue;
+        if (!o.snake.eye_material.empty() && !named(s.materials, o.snake.eye_material))
+            objects[i].at("eye_material").fail("material '" + o.snake.eye_material + "' is not defined in /materials");
+        if (!o.snake.ground.empty()) {
+            bool found = false;
+            for (const ObjectSpec& g : s.objects)
+                found |= g.name == o.snake.ground && g.shape == ObjectSpec::Shape::heightfield;
+            if (!found) objects[i].at("ground").fail("no heightfield object is named '" + o.snake.ground + "'");
+        }
+    }
+}
+
+}  // namespace
+
+SceneSpec parse_scene(const std::string& json_text, const std::string& label,
+                      std::vector<std::string>& warnings) {
+    nlohmann::ordered_json doc;
+    try {
+        doc = nlohmann::ordered_json::parse(json_text);
+    } catch (const nlohmann::json::parse_error& e) {
+        // e.what() is "[json.exception.parse_error.101] parse error at line L, column C: ...".
+        std::string what = e.what();
+        const size_t at = what.find("parse error");
+        throw SceneFileError(label + ": malformed JSON: " + (at == std::string::npos ? what : what.substr(at)));
+    }
+    const scene_file::Diagnostics diagnostics{label, &warnings};
+    const JsonNode root(doc, "", diagnostics);
+    root.expect_object();
+
+    SceneSpec s;
+    s.description = root.string("description", "");
+    if (const auto c = root.find("camera")) s.camera = parse_camera(*c);
+    if (const auto b = root.find("background")) s.background = parse_background(*b);
+    if (const auto lights = root.find("lights"))
+        for (const JsonNode& l : lights->elements()) s.lights.push_back(parse_light(l));
+    if (const auto textures = root.find("textures"))
+        for (const auto& [name, t] : textures->members()) s.textures.push_back(parse_texture(name, t));
+    if (const auto materials = root.find("materials"))
+        for (const auto& [name, m] : materials->members()) s.materials.push_back(parse_material(name, m));
+    const auto objects = root.at("objects").elements();
+    for (size_t i = 0; i < objects.size(); ++i) s.objects.push_back(parse_object(objects[i], i));
+    if (const auto passes = root.find("passes"))
+        for (const JsonNode& p : passes->elements()) s.passes.push_back(parse_pass(p));
+    if (const auto a = root.find("animation")) {
+        a->expect_object();
+        s.animation.fps = positive(*a, "fps", s.animation.fps);
+        if (const auto f = a->find("frames")) {
+            const auto e = f->elements();
+            if (e.size() != 2) f->fail("expected [first, last]");
+            s.animation.first = e[0].as_integer();
+            s.animation.last = e[1].as_integer();
+            if (s.animation.first < 0 || s.animation.last < s.animation.first) f->fail("needs 0 <= first <= last");
+        }
+        a->finish();
+    }
+    if (const auto r = root.find("render")) {
+        r->expect_object();
+        s.size = grid_of(*r, "size", s.size, 1 << 16);
+        s.shadows = r->string("shadows", s.shadows);
+        if (s.shadows != "none" && s.shadows != "map" && s.shadows != "rays")
+            r->at("shadows").fail("expected none, map or rays");
+        r->finish();
+    }
+    check_unique(s.textures, root, "textures");
+    check_unique(s.materials, root, "materials");
+    check_unique(s.objects, root, "objects");
+    check_references(s, root);
+    root.finish();
+    return s;
+}
+
+SceneSpec load_scene_file(const std::filesystem::path& path, std::vector<std::string>& warnings) {
+    std::ifstream in(path, std::ios::binary);
+    if (!in || std::filesystem::is_directory(path))
+        throw SceneFileError("cannot read scene file '" + path.string() + "': " +
+                             (std::filesystem::exists(path) ? "not a readable file" : "no such file"));
+    std::ostringstream text;
+    text << in.rdbuf();
+    SceneSpec spec = parse_scene(text.str(), path.string(), warnings);
+    spec.file = path;
+    return spec;
+}
+
+}  // namespace tessera

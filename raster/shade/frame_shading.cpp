@@ -1,0 +1,239 @@
+#include "raster/shade/frame_shading.h"
+
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_for.h>
+
+#include <algorithm>
+#include <stdexcept>
+#include <string>
+
+#include "raster/barycentrics.h"
+#include "raster/shade/background.h"
+#include "raster/shade/shade_kernel.h"
+
+namespace tessera {
+namespace {
+
+using shade::kLanes;
+using shade::Lanes;
+
+const Texture* texture_of(const Scene& scene, int32_t index) {
+    return index == kNoTexture ? nullptr : &scene.textures[size_t(index)];
+}
+
+}  // namespace
+
+FrameShading::FrameShading(const BakedScene& baked, const Scene& scene, RenderState state)
+    : baked_(baked), scene_(scene), state_(std::move(state)), eye_(state_.camera.eye) {
+    if (state_.width <= 0 || state_.height <= 0)
+        throw std::invalid_argument("shading needs a positive frame size");
+    const Mesh& mesh = baked_.mesh;
+    if (baked_.triangle_material.size() != mesh.triangle_count() ||
+        baked_.vertex_material.size() != mesh.vertex_count())
+        throw std::invalid_argument("shading: the baked scene's material ids do not match its mesh");
+    for (uint32_t m : baked_.vertex_material)
+        if (m >= scene_.materials.size())
+            throw std::invalid_argument("shading: a vertex refers to material " + std::to_string(m) +
+                                        ", but the scene has " + std::to_string(scene_.materials.size()));
+
+    // Pixel rays: the inverse of the seed's V and P restricted to directions. A camera-space
+    // direction (x_ndc / P00, y_ndc / P11, -1) goes to world space through the rows u, v, w
+    // of the view matrix.
+    const glm::mat4 view = state_.camera.view();
+    const glm::mat4 projection = state_.camera.projection();
+    const glm::vec3 u(view[0][0], view[1][0], view[2][0]);
+    const glm::vec3 v(view[0][1], view[1][1], view[2][1]);
+    const glm::vec3 w(view[0][2], view[1][2], view[2][2]);
+    ray_x_ = u / projection[0][0];
+    ray_y_ = v / projection[1][1];
+    ray_z_ = -w;
+
+    const glm::mat4 vp = projection * view;
+    clip_.resize(mesh.vertex_count());
+    bool any_gouraud = false;
+    for (const Material& m : scene_.materials) any_gouraud |= m.model == ShadingModel::gouraud;
+    if (any_gouraud) gouraud_.assign(mesh.vertex_count(), glm::vec3(0.0f));
+
+    tbb::parallel_for(tbb::blocked_range<size_t>(0, mesh.vertex_count(), 8192),
+                      [&](const tbb::blocked_range<size_t>& r) {
+        for (size_t i = r.begin(); i < r.end(); ++i) {
+            const glm::vec4 c = vp * glm::vec4(mesh.positions[i], 1.0f);
+            clip_[i] = c;
+            if (!any_gouraud) continue;
+            const Material& m = scene_.materials[baked_.vertex_material[i]];
+            if (m.model != ShadingModel::gouraud) continue;
+            // The seed's per-vertex shader: Blinn-Phong with the vertex normal.
+            using V = shade::V3<float>;
+            const glm::vec3 pw = mesh.positions[i];
+            const V p{pw.x, pw.y, pw.z};
+            const V to_eye = normalize_or(V{eye_.x, eye_.y, eye_.z} - p, V{0.0f, 0.0f, 1.0f});
+            const glm::vec3 nw = mesh.normals.empty() ? glm::vec3(0.0f) : mesh.normals[i];
+            const V n = normalize_or(V{nw.x, nw.y, nw.z}, to_eye);
+            const V c3 = shade::blinn_phong<float>(state_.lights, p, n, to_eye, shade::broadcast<float>(m.ka),
+                                                   shade::broadcast<float>(m.kd),
+                                                   shade::broadcast<float>(m.ks), m.shine);
+            gouraud_[i] = {c3.x, c3.y, c3.z};
+        }
+    });
+}
+
+bool FrameShading::transparent(uint32_t triangle) const {
+    return triangle < baked_.triangle_material.size() &&
+           scene_.materials[baked_.triangle_material[triangle]].transparent();
+}
+
+glm::vec4 FrameShading::background(int x, int y) const {
+    const float xn = 2.0f * (float(x) + 0.5f) / float(state_.width) - 1.0f;
+    const float yn = 1.0f - 2.0f * (float(y) + 0.5f) / float(state_.height);
+    return glm::vec4(background_radiance(scene_.background, ray_x_ * xn + ray_y_ * yn + ray_z_), 1.0f);
+}
+
+template <class F>
+void FrameShading::shade_with(std::span<const CoveredPixel> pixels, std::span<glm::vec4> out) const {
+    if (out.size() != pixels.size())
+        throw std::invalid_argument("shade: one output per fragment is needed");
+    const Mesh& mesh = baked_.mesh;
+    const size_t material_count = scene_.materials.size();
+
+    // Group by material, keeping the pixels' order within a group (counting sort); the
+    // last bucket collects pixels without a valid triangle.
+    std::vector<uint32_t> count(material_count + 2, 0);
+    const auto bucket = [&](const CoveredPixel& f) {
+        return f.triangle < baked_.triangle_material.size() ? size_t(baked_.triangle_material[f.triangle])
+                                                            : material_count;
+    };
+    for (const CoveredPixel& f : pixels) ++count[bucket(f) + 1];
+    for (size_t i = 1; i < count.size(); ++i) count[i] += count[i - 1];
+    std::vector<uint32_t> order(pixels.size());
+    {
+        std::vector<uint32_t> next(count.begin(), count.end() - 1);
+        for (size_t i = 0; i < pixels.size(); ++i) order[next[bucket(pixels[i])]++] = uint32_t(i);
+    }
+    for (size_t i = count[material_count]; i < pixels.size(); ++i)
+        out[order[i]] = background(pixels[order[i]].x, pixels[order[i]].y);
+
+    shade::KernelContext ctx;
+    ctx.lights = state_.lights;
+    ctx.eye = eye_;
+    Lanes lanes;
+    for (size_t mat = 0; mat < material_count; ++mat) {
+        const Material& material = scene_.materials[mat];
+        ctx.material = &material;
+        ctx.diffuse = texture_of(scene_, material.diffuse_texture);
+        ctx.normal = material.model == ShadingModel::gouraud ? nullptr : texture_of(scene_, material.normal_texture);
+        const bool needs_uv = ctx.diffuse || ctx.normal;
+        const bool needs_colour = material.model == ShadingModel::gouraud;
+        for (size_t start = count[mat]; start < count[mat + 1]; start += kLanes) {
+            const int n = int(std::min<size_t>(kLanes, count[mat + 1] - start));
+            uint32_t setup_for = kNoTriangle;  // consecutive pixels often share a triangle
+            PerspectiveBarycentrics setup{};
+            for (int lane = 0; lane < kLanes; ++lane) {
+                // Idle lanes repeat the first pixel so every lane computes finite values.
+                const CoveredPixel& f = pixels[order[start + size_t(lane < n ? lane : 0)]];
+                const uint32_t* corner = &mesh.indices[3 * size_t(f.triangle)];
+                if (f.triangle != setup_for) {
+                    setup = PerspectiveBarycentrics::from_clip(clip_[corner[0]], clip_[corner[1]],
+                                                               clip_[corner[2]], state_.width, state_.height);
+                    setup_for = f.triangle;
+                }
+                lanes.x[lane] = float(f.x) + 0.5f;
+                lanes.y[lane] = float(f.y) + 0.5f;
+                for (int k = 0; k < 3; ++k) {
+                    const uint32_t vi = corner[k];
+                    const glm::vec3 p = mesh.positions[vi];
+                    const glm::vec3 nrm = mesh.normals.empty() ? glm::vec3(0.0f) : mesh.normals[vi];
+                    for (int a = 0; a < 3; ++a) {
+                        lanes.bary[k][a][lane] = setup.e[k][a];
+                        lanes.pos[k][a][lane] = p[a];
+                        lanes.nrm[k][a][lane] = nrm[a];
+                    }
+                    // Only what the material reads: the gathers dominate the kernel's cost.
+                    if (needs_uv) {
+                        const glm::vec2 uv = mesh.uvs.empty() ? glm::vec2(0.0f) : mesh.uvs[vi];
+                        lanes.uv[k][0][lane] = uv.x;
+                        lanes.uv[k][1][lane] = uv.y;
+                    }
+                    if (needs_colour)
+                        for (int a = 0; a < 3; ++a) lanes.col[k][a][lane] = gouraud_[vi][a];
+                }
+            }
+            if constexpr (std::is_same_v<F, float>) {
+                for (int lane = 0; lane < n; ++lane) shade::shade_lanes<float>(ctx, lanes, lane);
+            } else {
+                shade::shade_lanes<F>(ctx, lanes, 0);
+            }
+            for (int lane = 0; lane < n; ++lane)
+                out[order[start + size_t(lane)]] = {lanes.out[0][lane], lanes.out[1][lane], lanes.out[2][lane],
+                                                    lanes.out[3][lane]};
+        }
+    }
+}
+
+void FrameShading::shade(std::span<const CoveredPixel> pixels, std::span<glm::vec4> out) const {
+    shade_with<simd::vfloat>(pixels, out);
+}
+
+void FrameShading::shade_reference(std::span<const CoveredPixel> pixels, std::span<glm::vec4> out) const {
+    shade_with<float>(pixels, out);
+}
+
+void shade_tile(const FrameShading& shading, const TileTarget& tile) {
+    std::vector<CoveredPixel> pixels;
+    pixels.reserve(size_t(tile.width) * size_t(tile.height));
+    for (int y = 0; y < tile.height; ++y) {
+        const uint32_t* ids = tile.triangle + size_t(y) * tile.triangle_stride;
+        glm::vec4* colour = tile.colour + size_t(y) * tile.colour_stride;
+        for (int x = 0; x < tile.width; ++x) {
+            if (ids[x] != kNoTriangle) {
+                pixels.push_back({tile.x0 + x, tile.y0 + y, ids[x]});
+            } else {
+                colour[x] = shading.background(tile.x0 + x, tile.y0 + y);
+            }
+        }
+    }
+    std::vector<glm::vec4> colours(pixels.size());
+    shading.shade(pixels, colours);
+    for (size_t i = 0; i < pixels.size(); ++i) {
+        const CoveredPixel& f = pixels[i];
+        // Opaque surfaces cover the pixel whatever their material's opacity (transparent
+        // triangles never reach the visibility buffer; a ray caster's might).
+        tile.colour[size_t(f.y - tile.y0) * tile.colour_stride + size_t(f.x - tile.x0)] =
+            glm::vec4(glm::vec3(colours[i]), 1.0f);
+    }
+}
+
+void blend_fragments(const FrameShading& shading, std::span<const CoveredPixel> pixels, const TileTarget& tile) {
+    std::vector<glm::vec4> colours(pixels.size());
+    shading.shade(pixels, colours);
+    for (size_t i = 0; i < pixels.size(); ++i) {
+        const CoveredPixel& f = pixels[i];
+        glm::vec4& dst = tile.colour[size_t(f.y - tile.y0) * tile.colour_stride + size_t(f.x - tile.x0)];
+        dst = blend_over(dst, colours[i]);
+    }
+}
+
+Frame shade_visibility(const FrameShading& shading, const VisibilityBuffer& visibility) {
+    const RenderState& s = shading.state();
+    if (visibility.width != s.width || visibility.height != s.height)
+        throw std::invalid_argument("shade_visibility: the visibility buffer is " +
+                                    std::to_string(visibility.width) + "x" + std::to_string(visibility.height) +
+                                    ", the frame " + std::to_string(s.width) + "x" + std::to_string(s.height));
+    Frame frame(s.width, s.height);
+    constexpr int kTile = 64;
+    const int tiles_x = (s.width + kTile - 1) / kTile, tiles_y = (s.height + kTile - 1) / kTile;
+    tbb::parallel_for(0, tiles_x * tiles_y, [&](int t) {
+        TileTarget tile;
+        tile.x0 = (t % tiles_x) * kTile;
+        tile.y0 = (t / tiles_x) * kTile;
+        tile.width = std::min(kTile, s.width - tile.x0);
+        tile.height = std::min(kTile, s.height - tile.y0);
+        tile.triangle = visibility.triangle.data() + size_t(tile.y0) * size_t(s.width) + size_t(tile.x0);
+        tile.triangle_stride = size_t(s.width);
+        tile.colour = &frame.at(tile.x0, tile.y0);
+        tile.colour_stride = size_t(s.width);
+        shade_tile(shading, tile);
+    });
+    return frame;
+}
+
+}  // namespace tessera

@@ -1,0 +1,111 @@
+// Shading of a frame: turns "which triangle covers this pixel" into linear RGBA, reading only
+// the visibility (triangle id per pixel or per fragment), the frame's baked world-space mesh
+// and the scene's materials, textures and lights. It does not care how visibility was found:
+// the tile rasterizer and the Embree ray caster feed it the same way.
+//
+// Per pixel it computes the perspective-correct barycentrics of the covering triangle at the
+// pixel centre from its clip-space corners (barycentrics.h: 2D homogeneous rasterization,
+// the seed's "interpolate u/h, v/h, 1/h, then divide" in closed form), and their screen-space
+// derivatives analytically from the same plane equations, which select the mip level.
+// Attributes are interpolated with b, then the material's model shades (lighting.h).
+//
+// The work is SIMD over pixels: they are grouped by material (counting sort, stable),
+// and each group is shaded kLanes at a time with simd::vfloat; the same template kernel
+// instantiated with float is the scalar reference path (shade_reference).
+#pragma once
+#include <glm/glm.hpp>
+
+#include <cstdint>
+#include <span>
+#include <vector>
+
+#include "raster/camera.h"
+#include "raster/output/frame.h"
+#include "raster/scene/scene.h"
+#include "raster/visibility.h"
+
+namespace tessera {
+
+// The seed's RenderState: what every shader of the frame reads, passed by value.
+struct RenderState {
+    Camera camera;
+    int width = 0;   // pixels
+    int height = 0;
+    std::vector<Light> lights;
+};
+
+// One covered pixel to shade: pixel (x, y), rows top to bottom, and the id of the triangle
+// seen there in the baked mesh.
+struct CoveredPixel {
+    int32_t x = 0;
+    int32_t y = 0;
+    uint32_t triangle = 0;
+};
+
+class FrameShading {
+public:
+    // Precomputes the per-vertex work of the frame in parallel: clip-space corners and the
+    // Gouraud colours of vertices whose material is Gouraud. `baked` and `scene` must outlive
+    // this object. Throws std::invalid_argument for a non-positive size or a bake that does
+    // not match the scene's materials.
+    FrameShading(const BakedScene& baked, const Scene& scene, RenderState state);
+
+    // Linear RGBA of each pixel (alpha = material opacity x diffuse texture alpha), in any
+    // mix of triangles and materials; out.size() must equal pixels.size(). A pixel
+    // whose triangle id is out of range gets the background.
+    void shade(std::span<const CoveredPixel> pixels, std::span<glm::vec4> out) const;
+    // The same through the scalar instantiation of the kernel, one pixel at a time.
+    void shade_reference(std::span<const CoveredPixel> pixels, std::span<glm::vec4> out) const;
+
+    // The environment seen through pixel (x, y), alpha 1.
+    glm::vec4 background(int x, int y) const;
+
+    const RenderState& state() const { return state_; }
+    bool transparent(uint32_t triangle) const;
+
+private:
+    template <class F>
+    void shade_with(std::span<const CoveredPixel> pixels, std::span<glm::vec4> out) const;
+
+    const BakedScene& baked_;
+    const Scene& scene_;
+    RenderState state_;
+    glm::vec3 eye_;
+    glm::vec3 ray_x_, ray_y_, ray_z_;   // pixel ray = ray_x * x_ndc + ray_y * y_ndc + ray_z
+    std::vector<glm::vec4> clip_;       // clip-space position per vertex
+    std::vector<glm::vec3> gouraud_;    // per vertex; empty when no material is Gouraud
+};
+
+// A tile of the frame: the visible triangle per pixel and the linear RGBA colour to write,
+// each addressed with its own row stride (in pixels).
+struct TileTarget {
+    int x0 = 0, y0 = 0, width = 0, height = 0;
+    const uint32_t* triangle = nullptr;  // kNoTriangle where nothing is visible
+    size_t triangle_stride = 0;
+    glm::vec4* colour = nullptr;  // linear RGBA
+    size_t colour_stride = 0;
+};
+
+// The opaque pass of a tile: visible pixels shaded, the others given the background.
+void shade_tile(const FrameShading& shading, const TileTarget& tile);
+
+// Alpha blending as in the seed (glBlendFunc(GL_SRC_ALPHA, GL_ONE_MINUS_SRC_ALPHA)) for the
+// colour, c = c_src * a_src + c_dst * (1 - a_src). Coverage composes as "over",
+// a = a_src + a_dst * (1 - a_src) (glBlendFuncSeparate's usual alpha factors), so a pixel
+// that was opaque stays opaque; the seed's a_src^2 + a_dst (1 - a_src) would leave frames
+// partly transparent wherever glass was drawn.
+inline glm::vec4 blend_over(glm::vec4 dst, glm::vec4 src) {
+    return {glm::vec3(src) * src.a + glm::vec3(dst) * (1.0f - src.a), src.a + dst.a * (1.0f - src.a)};
+}
+
+// The transparent pass of a tile: `pixels` (inside the tile, already depth-tested
+// against the opaque pass) are shaded together, then blended one after another in the given
+// order — submission order — so the result is the same whatever the tiling and threads.
+void blend_fragments(const FrameShading& shading, std::span<const CoveredPixel> pixels,
+                     const TileTarget& tile);
+
+// The opaque pass over a whole visibility buffer, tiles in parallel: how a renderer that
+// produces a VisibilityBuffer (the Embree ray caster, the tests) gets its picture.
+Frame shade_visibility(const FrameShading& shading, const VisibilityBuffer& visibility);
+
+}  // namespace tessera

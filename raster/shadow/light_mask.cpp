@@ -1,0 +1,38 @@
+#include "raster/shadow/light_mask.h"
+
+#include <stdexcept>
+#include <string>
+
+#include "raster/embree/tiles.h"
+
+namespace tessera::shadow {
+
+LightMask compute_light_mask(const VisibilityBuffer& visibility, const Mesh& mesh,
+                             const glm::mat4& view_projection,
+                             std::span<const glm::vec3> lights, const LightTest& test) {
+    if (lights.size() > kMaxLights)
+        throw std::invalid_argument(std::to_string(lights.size()) + " lights; at most " +
+                                    std::to_string(kMaxLights) + " can cast shadows");
+    LightMask mask{visibility.width, visibility.height, {}};
+    mask.bits.assign(size_t(mask.width) * size_t(mask.height), 0);
+    if (mask.bits.empty()) return mask;
+    const rt::PixelRays rays(view_projection, visibility.width, visibility.height);
+    rt::parallel_for_tiles(visibility.width, visibility.height, [&](const rt::ImageTile& tile) {
+        SurfacePoints points;
+        gather_surface_points(visibility, mesh, rays, tile, points);
+        std::vector<uint8_t> visible(points.size(), 0);
+        if (!lights.empty()) test(points, lights, visible);
+        for (size_t i = 0; i < points.size(); ++i) mask.bits[points.pixel[i]] = visible[i];
+    });
+    return mask;
+}
+
+void facing_lights(const SurfacePoints& points, std::span<const glm::vec3> lights,
+                   std::span<uint8_t> visible) {
+    for (size_t i = 0; i < points.size(); ++i)
+        for (size_t l = 0; l < lights.size(); ++l)
+            if (faces_light(points.position[i], points.normal[i], lights[l]))
+                visible[i] |= uint8_t(1u << l);
+}
+
+}  // namespace tessera::shadow

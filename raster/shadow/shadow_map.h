@@ -1,0 +1,74 @@
+// Shadow maps rendered by tessera's own rasterizer (the seed's ShadowShader idea: draw the
+// scene from the light, keep the depth), then looked up per surface point with a bias and
+// percentage-closer filtering.
+//
+// The light is a point light; its map is one perspective view from the light towards the
+// centre of the mesh's bounding sphere, with the field of view and near/far planes fitted to
+// that sphere, so every triangle of the frame lies inside the map (a light inside the sphere
+// gets a 120-degree view: points outside it count as lit; a cube map would be the cure).
+//
+// Bias, in texels of the map at the receiver's distance (so it follows the resolution and
+// the distance to the light): the receiver is pushed `normal_offset * sin(theta)` texels
+// along its normal (theta: angle between normal and light) and `depth_bias` texels towards
+// the light before it is projected. Why sin(theta): a tap D texels away from the receiver
+// reads a plane whose depth differs by D * texel * tan(theta) along the light, and a point
+// h above the plane is h / cos(theta) in front of it, so h >= D * texel * sin(theta) keeps
+// every tap in front. The farthest 3x3 PCF tap is D = sqrt(2) + 0.71 = 2.12 texels away
+// (the receiver can sit anywhere in its texel), hence the default 2.5: no acne on flat
+// surfaces at any angle, and almost no offset (no light leaking) where the light is steep.
+// `depth_bias` covers the depth buffer's rounding.
+//
+// PCF: (2r+1)^2 nearest-texel depth comparisons around the receiver; lit_fraction() is the
+// fraction passing, and lit() their majority (the binary state the light mask keeps).
+#pragma once
+#include <glm/glm.hpp>
+
+#include <span>
+#include <vector>
+
+#include "raster/mesh.h"
+#include "raster/rasterizer.h"
+#include "raster/shadow/light_mask.h"
+#include "raster/visibility.h"
+
+namespace tessera::shadow {
+
+struct ShadowMapOptions {
+    int resolution = 2048;       // square map, 16 .. kMaxViewport texels
+    float normal_offset = 2.5f;  // texels times sin(theta), along the surface normal
+    float depth_bias = 0.5f;     // texels, towards the light
+    int pcf_radius = 1;          // (2r+1)^2 taps; 0: a single tap
+};
+
+class ShadowMap {
+public:
+    // Renders the depth of `mesh` as seen from `light`. Throws std::invalid_argument for a
+    // resolution outside 16 .. kMaxViewport, a negative radius or bias.
+    ShadowMap(Rasterizer& rasterizer, const Mesh& mesh, const glm::vec3& light,
+              const ShadowMapOptions& options = {});
+
+    // Fraction of the PCF taps that see `position` (pushed off the surface along `normal`)
+    // from the light.
+    float lit_fraction(const glm::vec3& position, const glm::vec3& normal) const;
+    bool lit(const glm::vec3& position, const glm::vec3& normal) const {
+        return lit_fraction(position, normal) >= 0.5f;
+    }
+
+    const glm::vec3& light() const { return light_; }
+    const glm::mat4& view_projection() const { return view_projection_; }
+    const VisibilityBuffer& depth() const { return depth_; }  // triangle ids come along
+    const ShadowMapOptions& options() const { return options_; }
+
+private:
+    glm::vec3 light_;
+    ShadowMapOptions options_;
+    glm::mat4 view_projection_;
+    glm::vec3 axis_;            // unit view direction of the light
+    float texel_per_depth_;     // texel size in world units per unit of view depth
+    VisibilityBuffer depth_;
+};
+
+// A LightTest looking up maps[l] for lights[l] (the maps must be rendered for those lights).
+LightTest shadow_map_test(std::span<const ShadowMap> maps);
+
+}  // namespace tessera::shadow

@@ -1,0 +1,48 @@
+// The visible surface of one image tile as a list of world-space points, the input of both
+// shadow tests (Embree shadow rays and shadow-map lookups), so they judge identical points.
+//
+// Each point is the exact intersection of the pixel-centre ray with the plane of the pixel's
+// triangle (from the visibility buffer), not an unprojection of the stored depth: window depth
+// near 1 keeps too few bits to place a point within a shadow bias. Points are listed in 4x4
+// pixel blocks (row-major blocks, row-major inside), so 16 consecutive points are neighbours:
+// what makes a 16-wide shadow-ray packet coherent.
+#pragma once
+#include <glm/glm.hpp>
+
+#include <cstdint>
+#include <vector>
+
+#include "raster/embree/pixel_rays.h"
+#include "raster/embree/tiles.h"
+#include "raster/mesh.h"
+#include "raster/visibility.h"
+
+namespace tessera::shadow {
+
+struct SurfacePoints {
+    std::vector<uint32_t> pixel;      // index into the image, y * width + x
+    std::vector<glm::vec3> position;  // world space
+    std::vector<glm::vec3> normal;    // unit geometric normal, turned towards the camera
+
+    size_t size() const { return pixel.size(); }
+    void clear() {
+        pixel.clear();
+        position.clear();
+        normal.clear();
+    }
+};
+
+// Replaces `out` with the covered pixels of `tile`. Pixels whose triangle is degenerate or
+// has non-finite vertices (never produced by either renderer, but guarded) are left out.
+void gather_surface_points(const VisibilityBuffer& visibility, const Mesh& mesh,
+                           const rt::PixelRays& rays, const rt::ImageTile& tile,
+                           SurfacePoints& out);
+
+// True when a light at `light` is on the camera's side of the surface at `position` (the
+// normal from gather_surface_points faces the camera): only then can it light the point.
+inline bool faces_light(const glm::vec3& position, const glm::vec3& normal,
+                        const glm::vec3& light) {
+    return glm::dot(normal, light - position) > 0.0f;
+}
+
+}  // namespace tessera::shadow

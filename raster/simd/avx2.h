@@ -1,0 +1,83 @@
+// AVX2 back end of simd.h: 8 float / int32 lanes, masks as all-ones / all-zeros lanes.
+#pragma once
+#include <immintrin.h>
+
+#include <cstdint>
+
+namespace tessera::simd {
+
+inline constexpr int kLanes = 8;
+
+struct vmask {
+    __m256i m;
+    vmask() : m(_mm256_setzero_si256()) {}
+    explicit vmask(__m256i k) : m(k) {}
+    explicit vmask(bool b) : m(_mm256_set1_epi32(b ? -1 : 0)) {}
+};
+inline vmask operator&(vmask a, vmask b) { return vmask(_mm256_and_si256(a.m, b.m)); }
+inline vmask operator|(vmask a, vmask b) { return vmask(_mm256_or_si256(a.m, b.m)); }
+inline vmask andnot(vmask a, vmask b) { return vmask(_mm256_andnot_si256(a.m, b.m)); }
+inline uint32_t bits(vmask a) { return uint32_t(_mm256_movemask_ps(_mm256_castsi256_ps(a.m))); }
+inline bool any(vmask a) { return bits(a) != 0; }
+inline bool all(vmask a) { return bits(a) == 0xFF; }
+
+struct vint {
+    __m256i v;
+    vint() : v(_mm256_setzero_si256()) {}
+    vint(__m256i x) : v(x) {}
+    vint(int32_t s) : v(_mm256_set1_epi32(s)) {}
+    static vint load(const int32_t* p) { return _mm256_load_si256(reinterpret_cast<const __m256i*>(p)); }
+    void store(int32_t* p) const { _mm256_store_si256(reinterpret_cast<__m256i*>(p), v); }
+};
+inline vint operator+(vint a, vint b) { return _mm256_add_epi32(a.v, b.v); }
+inline vint operator-(vint a, vint b) { return _mm256_sub_epi32(a.v, b.v); }
+inline vint operator*(vint a, vint b) { return _mm256_mullo_epi32(a.v, b.v); }
+inline vint operator&(vint a, vint b) { return _mm256_and_si256(a.v, b.v); }
+inline vint operator|(vint a, vint b) { return _mm256_or_si256(a.v, b.v); }
+inline vint operator>>(vint a, vint s) { return _mm256_srav_epi32(a.v, s.v); }
+inline vmask operator<(vint a, vint b) { return vmask(_mm256_cmpgt_epi32(b.v, a.v)); }
+inline vmask operator>=(vint a, vint b) { return andnot(a < b, vmask(true)); }
+inline vmask operator==(vint a, vint b) { return vmask(_mm256_cmpeq_epi32(a.v, b.v)); }
+inline vint select(vmask m, vint a, vint b) {
+    return _mm256_castps_si256(_mm256_blendv_ps(_mm256_castsi256_ps(b.v), _mm256_castsi256_ps(a.v),
+                                                 _mm256_castsi256_ps(m.m)));
+}
+inline vint lane_index() { return _mm256_setr_epi32(0, 1, 2, 3, 4, 5, 6, 7); }
+
+struct vfloat {
+    __m256 v;
+    vfloat() : v(_mm256_setzero_ps()) {}
+    vfloat(__m256 x) : v(x) {}
+    vfloat(float s) : v(_mm256_set1_ps(s)) {}
+    static vfloat load(const float* p) { return _mm256_load_ps(p); }
+    void store(float* p) const { _mm256_store_ps(p, v); }
+};
+inline vfloat operator+(vfloat a, vfloat b) { return _mm256_add_ps(a.v, b.v); }
+inline vfloat operator-(vfloat a, vfloat b) { return _mm256_sub_ps(a.v, b.v); }
+inline vfloat operator*(vfloat a, vfloat b) { return _mm256_mul_ps(a.v, b.v); }
+inline vfloat operator/(vfloat a, vfloat b) { return _mm256_div_ps(a.v, b.v); }
+inline vfloat fma(vfloat a, vfloat b, vfloat c) { return _mm256_fmadd_ps(a.v, b.v, c.v); }
+inline vfloat min(vfloat a, vfloat b) { return _mm256_min_ps(a.v, b.v); }
+inline vfloat max(vfloat a, vfloat b) { return _mm256_max_ps(a.v, b.v); }
+inline vmask operator<(vfloat a, vfloat b) {
+    return vmask(_mm256_castps_si256(_mm256_cmp_ps(a.v, b.v, _CMP_LT_OQ)));
+}
+inline vmask operator<=(vfloat a, vfloat b) {
+    return vmask(_mm256_castps_si256(_mm256_cmp_ps(a.v, b.v, _CMP_LE_OQ)));
+}
+inline vfloat select(vmask m, vfloat a, vfloat b) {
+    return _mm256_blendv_ps(b.v, a.v, _mm256_castsi256_ps(m.m));
+}
+inline vfloat to_float(vint a) { return _mm256_cvtepi32_ps(a.v); }
+inline vfloat sqrt(vfloat a) { return _mm256_sqrt_ps(a.v); }
+inline vint round_to_int(vfloat a) { return _mm256_cvtps_epi32(a.v); }  // nearest even
+inline vfloat gather(const float* base, vint index) { return _mm256_i32gather_ps(base, index.v, 4); }
+
+// Stores of the lanes selected by `m`: load, blend, store (the tile owns the whole line).
+inline void store_masked(float* p, vmask m, vfloat a) { select(m, a, vfloat::load(p)).store(p); }
+inline void store_masked(uint32_t* p, vmask m, vint a) {
+    int32_t* q = reinterpret_cast<int32_t*>(p);
+    select(m, a, vint::load(q)).store(q);
+}
+
+}  // namespace tessera::simd

@@ -1,0 +1,71 @@
+// The scalar "SIMD" fallback: one lane, plain C++. It is also the reference for what each
+// operation of the wider back ends means (see simd.h).
+#pragma once
+#include <cmath>
+#include <cstdint>
+#include <cstring>
+
+namespace tessera::simd {
+
+inline constexpr int kLanes = 1;
+
+struct vmask {
+    bool m = false;
+    vmask() = default;
+    explicit vmask(bool b) : m(b) {}
+};
+inline vmask operator&(vmask a, vmask b) { return vmask(a.m && b.m); }
+inline vmask operator|(vmask a, vmask b) { return vmask(a.m || b.m); }
+inline vmask andnot(vmask a, vmask b) { return vmask(!a.m && b.m); }  // ~a & b
+inline bool any(vmask a) { return a.m; }
+inline bool all(vmask a) { return a.m; }
+inline uint32_t bits(vmask a) { return a.m ? 1u : 0u; }
+
+struct vint {
+    int32_t v = 0;
+    vint() = default;
+    vint(int32_t s) : v(s) {}
+    static vint load(const int32_t* p) { return vint(p[0]); }
+    void store(int32_t* p) const { p[0] = v; }
+};
+// Wrapping arithmetic like the hardware lanes (computed in uint32 to avoid C++ UB).
+inline vint operator+(vint a, vint b) { return vint(int32_t(uint32_t(a.v) + uint32_t(b.v))); }
+inline vint operator-(vint a, vint b) { return vint(int32_t(uint32_t(a.v) - uint32_t(b.v))); }
+inline vint operator*(vint a, vint b) { return vint(int32_t(uint32_t(a.v) * uint32_t(b.v))); }
+inline vint operator&(vint a, vint b) { return vint(a.v & b.v); }
+inline vint operator|(vint a, vint b) { return vint(a.v | b.v); }
+inline vint operator>>(vint a, vint s) { return vint(a.v >> s.v); }  // arithmetic
+inline vmask operator>=(vint a, vint b) { return vmask(a.v >= b.v); }
+inline vmask operator<(vint a, vint b) { return vmask(a.v < b.v); }
+inline vmask operator==(vint a, vint b) { return vmask(a.v == b.v); }
+inline vint select(vmask m, vint a, vint b) { return m.m ? a : b; }
+inline vint lane_index() { return vint(0); }
+
+struct vfloat {
+    float v = 0.0f;
+    vfloat() = default;
+    vfloat(float s) : v(s) {}
+    static vfloat load(const float* p) { return vfloat(p[0]); }
+    void store(float* p) const { p[0] = v; }
+};
+inline vfloat operator+(vfloat a, vfloat b) { return a.v + b.v; }
+inline vfloat operator-(vfloat a, vfloat b) { return a.v - b.v; }
+inline vfloat operator*(vfloat a, vfloat b) { return a.v * b.v; }
+inline vfloat operator/(vfloat a, vfloat b) { return a.v / b.v; }
+inline vfloat fma(vfloat a, vfloat b, vfloat c) { return std::fma(a.v, b.v, c.v); }  // a*b+c
+inline vfloat min(vfloat a, vfloat b) { return a.v < b.v ? a.v : b.v; }
+inline vfloat max(vfloat a, vfloat b) { return a.v > b.v ? a.v : b.v; }
+inline vmask operator<(vfloat a, vfloat b) { return vmask(a.v < b.v); }
+inline vmask operator<=(vfloat a, vfloat b) { return vmask(a.v <= b.v); }
+inline vfloat select(vmask m, vfloat a, vfloat b) { return m.m ? a : b; }
+inline vfloat to_float(vint a) { return float(a.v); }
+inline vfloat sqrt(vfloat a) { return std::sqrt(a.v); }
+// Round to nearest, ties to even (the default rounding mode, like cvtps2dq).
+inline vint round_to_int(vfloat a) { return vint(int32_t(std::nearbyint(a.v))); }
+inline vfloat gather(const float* base, vint index) { return base[index.v]; }
+
+// Stores the lanes of `a` where `m` is set (the others keep their memory contents).
+inline void store_masked(float* p, vmask m, vfloat a) { if (m.m) p[0] = a.v; }
+inline void store_masked(uint32_t* p, vmask m, vint a) { if (m.m) p[0] = uint32_t(a.v); }
+
+}  // namespace tessera::simd

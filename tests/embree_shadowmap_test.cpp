@@ -1,0 +1,174 @@
+// Shadow maps rendered by the rasterizer, against the same questions the shadow rays answer:
+// occluded and lit points, no acne on a plane with the default bias, agreement with Embree's
+// exact shadows on the sphere grid, determinism, broken triangles, bad options.
+#include <gtest/gtest.h>
+#include <tbb/global_control.h>
+
+#include <limits>
+#include <vector>
+
+#include "raster/embree/scene.h"
+#include "raster/embree/shadow_rays.h"
+#include "raster/rasterizer.h"
+#include "raster/shadow/mask_compare.h"
+#include "raster/shadow/shadow_map.h"
+#include "raster/sphere_grid.h"
+
+namespace tessera::shadow {
+namespace {
+
+const glm::vec3 kUp{0.0f, 1.0f, 0.0f};
+
+Mesh ground_and_occluder() {
+    Mesh mesh;
+    append_ground(mesh, 0.0f, 0.0f, 0.0f, 10.0f, 4);
+    append_ground(mesh, 0.0f, 0.0f, 1.0f, 1.0f, 1);
+    rt::reserve_ray_padding(mesh);
+    return mesh;
+}
+
+TEST(ShadowMap, PointUnderOccluderIsShadowedAndBesideItLit) {
+    const Mesh mesh = ground_and_occluder();
+    Rasterizer rasterizer;
+    for (int pcf : {0, 1, 2}) {
+        ShadowMapOptions options;
+        options.resolution = 512;
+        options.pcf_radius = pcf;
+        const ShadowMap map(rasterizer, mesh, {0.0f, 5.0f, 0.0f}, options);
+        EXPECT_FALSE(map.lit({0.0f, 0.0f, 0.0f}, kUp)) << "pcf " << pcf;
+        EXPECT_FALSE(map.lit({0.3f, 0.0f, -0.3f}, kUp)) << "pcf " << pcf;
+        EXPECT_TRUE(map.lit({2.0f, 0.0f, 0.0f}, kUp)) << "pcf " << pcf;
+        EXPECT_TRUE(map.lit({0.2f, 1.0f, 0.2f}, kUp)) << "the occluder's own top, pcf " << pcf;
+    }
+}
+
+// Every covered pixel of a lone plane must be lit, for steep and low lights alike.
+TEST(ShadowMap, FlatPlaneHasNoAcneWithTheDefaultBias) {
+    Mesh mesh;
+    append_ground(mesh, 0.0f, 0.0f, 0.0f, 40.0f, 16);
+    rt::reserve_ray_padding(mesh);
+    Camera camera;
+    camera.eye = {0.0f, 6.0f, 14.0f};
+    camera.lookat = {0.0f, 0.0f, 0.0f};
+    const glm::mat4 vp = camera.view_projection();
+    Rasterizer rasterizer;
+    VisibilityBuffer vis;
+    rasterizer.render(mesh, vp, Viewport(320, 180), RasterOptions{}, vis);
+    // Elevations of about 70, 30 and 10 degrees above the plane's centre, from three sides.
+    const std::vector<glm::vec3> lights = {{5.0f, 30.0f, 5.0f}, {-35.0f, 20.0f, 0.0f},
+                                           {0.0f, 10.0f, -57.0f}};
+    for (int resolution : {256, 2048}) {
+        ShadowMapOptions options;
+        options.resolution = resolution;
+        std::vector<ShadowMap> maps;
+        for (const glm::vec3& light : lights) maps.emplace_back(rasterizer, mesh, light, options);
+        const LightMask mask = compute_light_mask(vis, mesh, vp, lights, shadow_map_test(maps));
+        size_t covered = 0, acne = 0;
+        for (size_t p = 0; p < mask.bits.size(); ++p) {
+            if (vis.triangle[p] == kNoTriangle) continue;
+            ++covered;
+            acne += mask.bits[p] != 7;
+        }
+        EXPECT_GT(covered, mask.bits.size() / 3);
+        EXPECT_EQ(acne, 0u) << "resolution " << resolution;
+    }
+}
+
+TEST(ShadowMap, WithoutBiasThePlaneHasAcne) {
+    // The previous test can fail: with no bias a low light self-shadows the plane.
+    Mesh mesh;
+    append_ground(mesh, 0.0f, 0.0f, 0.0f, 40.0f, 16);
+    Camera camera;
+    camera.eye = {0.0f, 6.0f, 14.0f};
+    const glm::mat4 vp = camera.view_projection();
+    Rasterizer rasterizer;
+    VisibilityBuffer vis;
+    rasterizer.render(mesh, vp, Viewport(320, 180), RasterOptions{}, vis);
+    const std::vector<glm::vec3> lights = {{0.0f, 10.0f, -57.0f}};
+    ShadowMapOptions options;
+    options.resolution = 256;
+    options.normal_offset = 0.0f;
+    options.depth_bias = 0.0f;
+    const std::vector<ShadowMap> maps = {ShadowMap(rasterizer, mesh, lights[0], options)};
+    const LightMask mask = compute_light_mask(vis, mesh, vp, lights, shadow_map_test(maps));
+    size_t dark = 0;
+    for (size_t p = 0; p < mask.bits.size(); ++p)
+        dark += vis.triangle[p] != kNoTriangle && mask.bits[p] == 0;
+    EXPECT_GT(dark, 100u);
+}
+
+TEST(ShadowMap, AgreesWithEmbreeShadowRaysOnTheSphereGrid) {
+    const SphereGridScene grid = make_sphere_grid(20000);
+    const glm::mat4 vp = grid.camera.view_projection();
+    Rasterizer rasterizer;
+    VisibilityBuffer vis;
+    rasterizer.render(grid.mesh, vp, Viewport(640, 360), RasterOptions{}, vis);
+    const std::vector<glm::vec3> lights = {grid.light};
+    const std::vector<ShadowMap> maps = {ShadowMap(rasterizer, grid.mesh, grid.light)};
+    const LightMask by_map = compute_light_mask(vis, grid.mesh, vp, lights, shadow_map_test(maps));
+    const rt::RayScene scene(rt::default_ray_device(), grid.mesh);
+    const LightMask by_rays =
+        compute_light_mask(vis, grid.mesh, vp, lights, rt::shadow_ray_test(scene));
+    const LightMask grazing = compute_light_mask(vis, grid.mesh, vp, lights, grazing_lights(0.1f));
+    const MaskAgreement agreement = compare_light_masks(by_map, by_rays, vis, &grazing);
+    EXPECT_GT(agreement.compared, 100000u);
+    EXPECT_GE(agreement.agreement(), 0.99);
+    size_t shadowed = 0;
+    for (size_t p = 0; p < vis.triangle.size(); ++p)
+        shadowed += vis.triangle[p] != kNoTriangle && by_rays.bits[p] == 0;
+    EXPECT_GT(shadowed, 10000u) << "a comparison without shadows proves nothing";
+}
+
+TEST(ShadowMap, MaskIsTheSameForAnyThreadCount) {
+    const SphereGridScene grid = make_sphere_grid(5000);
+    const glm::mat4 vp = grid.camera.view_projection();
+    const std::vector<glm::vec3> lights = {grid.light, {-4.0f, 6.0f, 2.0f}};
+    const auto render = [&] {
+        Rasterizer rasterizer;
+        VisibilityBuffer vis;
+        rasterizer.render(grid.mesh, vp, Viewport(333, 187), RasterOptions{}, vis);
+        ShadowMapOptions options;
+        options.resolution = 700;
+        std::vector<ShadowMap> maps;
+        for (const glm::vec3& light : lights) maps.emplace_back(rasterizer, grid.mesh, light, options);
+        return compute_light_mask(vis, grid.mesh, vp, lights, shadow_map_test(maps)).bits;
+    };
+    const auto all = render();
+    const tbb::global_control one(tbb::global_control::max_allowed_parallelism, 1);
+    EXPECT_EQ(render(), all);
+}
+
+TEST(ShadowMap, BrokenTrianglesAreSkippedAndTheFrameStillRenders) {
+    Mesh mesh = ground_and_occluder();
+    const float nan = std::numeric_limits<float>::quiet_NaN();
+    mesh.positions.push_back({nan, 3.0f, 0.0f});
+    mesh.positions.push_back({std::numeric_limits<float>::infinity(), 3.0f, 0.0f});
+    const auto last = uint32_t(mesh.positions.size());
+    mesh.indices.insert(mesh.indices.end(), {0, last - 2, 1, 0, last - 1, 1, 0, 1, 999});
+    rt::reserve_ray_padding(mesh);
+    Rasterizer rasterizer;
+    ShadowMapOptions options;
+    options.resolution = 256;
+    const ShadowMap map(rasterizer, mesh, {0.0f, 5.0f, 0.0f}, options);
+    EXPECT_FALSE(map.lit({0.0f, 0.0f, 0.0f}, kUp));
+    EXPECT_TRUE(map.lit({2.0f, 0.0f, 0.0f}, kUp));
+    const rt::RayScene scene(rt::default_ray_device(), mesh);
+    EXPECT_EQ(scene.defects().total(), 3u);
+}
+
+TEST(ShadowMap, BadOptionsAreRejected) {
+    const Mesh mesh = ground_and_occluder();
+    Rasterizer rasterizer;
+    for (auto change : {+[](ShadowMapOptions& o) { o.resolution = 8; },
+                        +[](ShadowMapOptions& o) { o.resolution = 100000; },
+                        +[](ShadowMapOptions& o) { o.pcf_radius = -1; },
+                        +[](ShadowMapOptions& o) { o.normal_offset = -1.0f; },
+                        +[](ShadowMapOptions& o) { o.depth_bias = std::numeric_limits<float>::quiet_NaN(); }}) {
+        ShadowMapOptions options;
+        change(options);
+        EXPECT_THROW(ShadowMap(rasterizer, mesh, {0.0f, 5.0f, 0.0f}, options), std::invalid_argument);
+    }
+}
+
+}  // namespace
+}  // namespace tessera::shadow

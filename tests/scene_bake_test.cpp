@@ -1,0 +1,116 @@
+// Transforms (the seed's S * R * T and its inverse) and baking objects into one world mesh.
+#include <gtest/gtest.h>
+
+#include <glm/gtc/constants.hpp>
+
+#include <tbb/global_control.h>
+
+#include "raster/geometry/param_surface.h"
+#include "raster/geometry/surfaces.h"
+#include "raster/scene/scene.h"
+
+using namespace tessera;
+
+TEST(SceneTransform, SeedOrderScaleRotateTranslateAndInverse) {
+    Transform t;
+    t.scale = {2.0f, 1.0f, 1.0f};
+    t.axis = {0, 0, 1};
+    t.angle = glm::half_pi<float>();
+    t.translation = {10, 0, 0};
+    // (1, 0, 0): scaled to (2, 0, 0), rotated to (0, 2, 0), moved to (10, 2, 0).
+    const glm::vec4 p = t.model() * glm::vec4(1, 0, 0, 1);
+    EXPECT_LT(glm::length(glm::vec3(p) - glm::vec3(10, 2, 0)), 1e-5f);
+    const glm::mat4 identity = t.model() * t.inverse();
+    for (int c = 0; c < 4; ++c)
+        for (int r = 0; r < 4; ++r) EXPECT_NEAR(identity[c][r], c == r ? 1.0f : 0.0f, 1e-5f);
+    t.scale = {1, 0, 1};
+    EXPECT_THROW(t.model(), std::invalid_argument);
+}
+
+TEST(SceneTransform, NormalsStayPerpendicularUnderNonUniformScale) {
+    Transform t;
+    t.scale = {3.0f, 0.5f, 1.0f};
+    t.axis = {1, 1, 0};
+    t.angle = 0.7f;
+    const glm::vec3 tangent(1, -1, 0), normal(1, 1, 0);  // perpendicular in model space
+    const glm::vec3 tw = glm::mat3(t.model()) * tangent;
+    const glm::vec3 nw = t.normal_matrix() * normal;
+    EXPECT_NEAR(glm::dot(tw, nw), 0.0f, 1e-5f);
+    EXPECT_GT(std::abs(glm::dot(tw, glm::mat3(t.model()) * normal)), 0.1f);  // the naive way fails
+}
+
+namespace {
+
+Scene two_objects() {
+    Scene scene;
+    scene.materials = {Material{}, Material{}};
+    scene.materials[1].model = ShadingModel::toon;
+    auto sphere = std::make_shared<const Mesh>(tessellate(sphere_surface({0, 0, 0}, 1.0f), 8, 4));
+    Object a{"a", sphere, 0, {}, {}};
+    Object b{"b", sphere, 1, {}, {}};
+    b.transform.translation = {5, 0, 0};
+    b.transform.scale = {-1, 1, 1};  // a mirror
+    scene.objects = {a, b};
+    return scene;
+}
+
+}  // namespace
+
+TEST(SceneBake, ConcatenatesInOrderWithMaterialsAndMirroredWinding) {
+    const Scene scene = two_objects();
+    const BakedScene baked = bake(scene);
+    const size_t nv = scene.objects[0].geometry->vertex_count(), nt = scene.objects[0].geometry->triangle_count();
+    ASSERT_EQ(baked.mesh.vertex_count(), 2 * nv);
+    ASSERT_EQ(baked.mesh.triangle_count(), 2 * nt);
+    EXPECT_EQ(baked.triangle_material[0], 0u);
+    EXPECT_EQ(baked.triangle_material[nt], 1u);
+    EXPECT_EQ(baked.vertex_material[nv], 1u);
+    EXPECT_LT(glm::length(baked.mesh.positions[nv + 3] -
+                          (glm::vec3(-1, 1, 1) * scene.objects[0].geometry->positions[3] + glm::vec3(5, 0, 0))),
+              1e-5f);
+    // Both copies stay counter-clockwise around their outward normals.
+    for (size_t t = 0; t < baked.mesh.triangle_count(); ++t) {
+        const auto& m = baked.mesh;
+        const glm::vec3 a = m.positions[m.indices[3 * t]], b = m.positions[m.indices[3 * t + 1]],
+                        c = m.positions[m.indices[3 * t + 2]];
+        const glm::vec3 face = glm::cross(b - a, c - a);
+        if (glm::length(face) < 1e-6f) continue;
+        EXPECT_GT(glm::dot(face, m.normals[m.indices[3 * t]] + m.normals[m.indices[3 * t + 1]] +
+                                     m.normals[m.indices[3 * t + 2]]),
+                  0.0f)
+            << "triangle " << t;
+    }
+}
+
+TEST(SceneBake, SameBytesWhateverTheThreadCount) {
+    const Scene scene = two_objects();
+    BakedScene one;
+    {
+        tbb::global_control limit(tbb::global_control::max_allowed_parallelism, 1);
+        one = bake(scene);
+    }
+    const BakedScene many = bake(scene);
+    EXPECT_EQ(one.mesh.positions, many.mesh.positions);
+    EXPECT_EQ(one.mesh.normals, many.mesh.normals);
+    EXPECT_EQ(one.mesh.indices, many.mesh.indices);
+}
+
+TEST(SceneBake, BadReferencesAreClearErrors) {
+    Scene scene = two_objects();
+    scene.objects[1].material = 7;
+    EXPECT_THROW(bake(scene), std::invalid_argument);
+    scene = two_objects();
+    scene.objects[0].geometry = nullptr;
+    EXPECT_THROW(bake(scene), std::invalid_argument);
+    scene = two_objects();
+    scene.materials[0].diffuse_texture = 3;
+    EXPECT_THROW(bake(scene), std::invalid_argument);
+}
+
+TEST(SceneAnimate, HooksRunWithTheSceneTime) {
+    Scene scene = two_objects();
+    scene.objects[0].animate = [](Object& o, float t) { o.transform.translation.y = t; };
+    scene.animate(2.5f);
+    EXPECT_EQ(scene.objects[0].transform.translation.y, 2.5f);
+    EXPECT_EQ(scene.objects[1].transform.translation.y, 0.0f);
+}

@@ -1,0 +1,206 @@
+// Scene files: the shipped scenes parse cleanly; each kind of bad file gets its own clear
+// diagnostic (wrong type with the JSON path, unknown key warning, missing file, malformed
+// JSON, dangling reference); camera keyframes interpolate; scene names resolve.
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <fstream>
+#include <string>
+#include <vector>
+
+#include "raster/scene_file/scene_build.h"
+#include "raster/scene_file/scene_library.h"
+#include "raster/scene_file/scene_parse.h"
+#include "raster/scene_file/snake.h"
+
+namespace fs = std::filesystem;
+using namespace tessera;
+
+namespace {
+
+const fs::path kScenes = fs::path(TESSERA_TEST_DATA) / ".." / ".." / "examples" / "scenes";
+
+// A minimal valid scene with `extra` spliced in as further top-level members.
+std::string scene_with(const std::string& objects, const std::string& extra = "") {
+    return R"({"materials": {"m": {"model": "phong", "kd": [0.5, 0.5, 0.5]}}, "objects": )" + objects +
+           (extra.empty() ? "" : ", " + extra) + "}";
+}
+
+const std::string kSphere = R"([{"type": "sphere", "material": "m", "radius": 1}])";
+
+// The message of the SceneFileError that parsing `text` throws ("" if it does not throw).
+std::string parse_error(const std::string& text) {
+    std::vector<std::string> warnings;
+    try {
+        parse_scene(text, "x.json", warnings);
+    } catch (const SceneFileError& e) {
+        return e.what();
+    }
+    return "";
+}
+
+}  // namespace
+
+TEST(SceneFile, EveryShippedSceneParsesWithoutWarnings) {
+    const std::vector<std::string> names = available_scenes({kScenes});
+    for (const char* expected : {"snakes", "flag", "toon", "bumpcube", "terrain", "metaballs", "stress"})
+        EXPECT_NE(std::find(names.begin(), names.end(), expected), names.end()) << expected;
+    for (const std::string& name : names) {
+        std::vector<std::string> warnings;
+        const SceneSpec spec = load_scene_file(find_scene(name, {kScenes}), warnings);
+        EXPECT_TRUE(warnings.empty()) << name << ": " << (warnings.empty() ? "" : warnings.front());
+        EXPECT_FALSE(spec.objects.empty() && spec.passes.empty()) << name;
+        EXPECT_FALSE(spec.lights.empty()) << name;
+    }
+}
+
+TEST(SceneFile, SnakesSceneHasTheHomeworkIngredients) {
+    std::vector<std::string> warnings;
+    const SceneSpec s = load_scene_file(kScenes / "snakes.json", warnings);
+    int snakes = 0, grounds = 0;
+    for (const ObjectSpec& o : s.objects) {
+        snakes += o.shape == ObjectSpec::Shape::snake;
+        grounds += o.shape == ObjectSpec::Shape::heightfield;
+    }
+    EXPECT_GE(snakes, 3);
+    EXPECT_EQ(grounds, 1);
+    bool rd = false;
+    for (const TextureSpec& t : s.textures) rd |= t.kind == TextureSpec::Kind::reaction_diffusion;
+    EXPECT_TRUE(rd);
+    EXPECT_EQ(s.shadows, "rays");
+}
+
+TEST(SceneFile, WrongTypeNamesTheJsonPath) {
+    EXPECT_EQ(parse_error(R"({"materials": {"m": {"kd": "red"}}, "objects": [{"type": "sphere", "material": "m"}]})"),
+              "x.json: /materials/m/kd: expected an array of 3 numbers");
+    EXPECT_EQ(parse_error(scene_with(R"([{"type": "sphere", "material": "m"}, {"type": "sphere", "material": "m"},
+                                         {"type": "sphere", "material": "m", "radius": "big"}])")),
+              "x.json: /objects/2/radius: expected a number, got a string");
+    EXPECT_EQ(parse_error(scene_with(kSphere, R"("camera": {"eye": [0, 1]})")),
+              "x.json: /camera/eye: expected an array of 3 numbers");
+    EXPECT_EQ(parse_error(scene_with(kSphere, R"("lights": {"position": [0, 1, 0]})")),
+              "x.json: /lights: expected an array, got an object");
+    EXPECT_EQ(parse_error(scene_with(R"([{"type": "sphere", "material": "m", "tessellation": [8, 2.5]}])")),
+              "x.json: /objects/0/tessellation/1: expected an integer");
+}
+
+TEST(SceneFile, OutOfRangeValuesAreErrorsWithThePath) {
+    EXPECT_EQ(parse_error(scene_with(R"([{"type": "sphere", "material": "m", "radius": -1}])")),
+              "x.json: /objects/0/radius: must be positive");
+    EXPECT_EQ(parse_error(scene_with(kSphere, R"("camera": {"fov": 200})")),
+              "x.json: /camera/fov: must lie in (0, 179) degrees");
+    const std::string opacity = parse_error(
+        R"({"materials": {"m": {"opacity": 2}}, "objects": [{"type": "sphere", "material": "m"}]})");
+    EXPECT_NE(opacity.find("x.json: /materials/m: "), std::string::npos) << opacity;
+    EXPECT_NE(opacity.find("opacity"), std::string::npos) << opacity;
+    EXPECT_EQ(parse_error(scene_with(R"([{"type": "cone", "material": "m"}])")).rfind("x.json: /objects/0/type: unknown object type 'cone'", 0),
+              0u);
+}
+
+TEST(SceneFile, DanglingReferencesAreErrors) {
+    EXPECT_EQ(parse_error(scene_with(R"([{"type": "sphere", "material": "nope"}])")),
+              "x.json: /objects/0/material: material 'nope' is not defined in /materials");
+    EXPECT_EQ(parse_error(R"({"materials": {"m": {"diffuse_texture": "skin"}}, "objects": []})"),
+              "x.json: /materials/m: texture 'skin' is not defined in /textures");
+    EXPECT_EQ(parse_error(scene_with(R"([{"type": "snake", "material": "m", "ground": "sand"}])")),
+              "x.json: /objects/0/ground: no heightfield object is named 'sand'");
+    EXPECT_EQ(parse_error(R"({"objects": []})" ).empty(), true);
+    EXPECT_EQ(parse_error(R"({"materials": {}})"), "x.json: /: missing required key 'objects'");
+}
+
+TEST(SceneFile, UnknownKeysAreWarningsNamingFileAndPath) {
+    std::vector<std::string> warnings;
+    parse_scene(scene_with(R"([{"type": "sphere", "material": "m", "radius": 1, "colour": [1, 0, 0]}])",
+                           R"("camrea": {}, "lights": [{"direction": [0, 1, 0], "Lx": [1, 1, 1]}], "a/b": 1)"),
+                "x.json", warnings);
+    ASSERT_EQ(warnings.size(), 4u);
+    const auto has = [&](const std::string& text) {
+        return std::find(warnings.begin(), warnings.end(), text) != warnings.end();
+    };
+    EXPECT_TRUE(has("x.json: /objects/0/colour: unknown key 'colour'; ignored"));
+    EXPECT_TRUE(has("x.json: /camrea: unknown key 'camrea'; ignored"));
+    EXPECT_TRUE(has("x.json: /lights/0/Lx: unknown key 'Lx'; ignored"));
+    EXPECT_TRUE(has("x.json: /a~1b: unknown key 'a/b'; ignored"));  // RFC 6901 escaping
+}
+
+TEST(SceneFile, ParametersTheModelDoesNotUseAreWarnings) {
+    std::vector<std::string> warnings;
+    parse_scene(R"({"materials": {"cel": {"model": "toon", "ks": [1, 1, 1]}},
+                    "objects": [{"type": "sphere", "material": "cel"}]})",
+                "x.json", warnings);
+    ASSERT_EQ(warnings.size(), 1u);
+    EXPECT_EQ(warnings[0], "x.json: /materials/cel: material parameter 'ks' is not used by the toon model; ignored");
+}
+
+TEST(SceneFile, MissingFileAndMalformedJson) {
+    std::vector<std::string> warnings;
+    try {
+        load_scene_file("/nonexistent/scene.json", warnings);
+        FAIL() << "no error";
+    } catch (const SceneFileError& e) {
+        EXPECT_EQ(std::string(e.what()), "cannot read scene file '/nonexistent/scene.json': no such file");
+    }
+    const std::string err = parse_error("{\"objects\": [\n  {\"type\": \"sphere\",, }\n]}");
+    EXPECT_EQ(err.rfind("x.json: malformed JSON: parse error at line 2, column ", 0), 0u) << err;
+    EXPECT_EQ(parse_error("[1, 2]"), "x.json: /: expected an object, got an array");
+}
+
+TEST(SceneFile, UnknownSceneNameListsTheAvailableOnes) {
+    try {
+        find_scene("snaeks", {kScenes});
+        FAIL() << "no error";
+    } catch (const std::invalid_argument& e) {
+        const std::string m = e.what();
+        EXPECT_NE(m.find("unknown scene 'snaeks'"), std::string::npos) << m;
+        EXPECT_NE(m.find("snakes"), std::string::npos) << m;
+        EXPECT_NE(m.find("metaballs"), std::string::npos) << m;
+    }
+    EXPECT_EQ(find_scene("my/scene.json", {kScenes}), fs::path("my/scene.json"));
+    EXPECT_EQ(fs::weakly_canonical(find_scene("flag", {kScenes})), fs::weakly_canonical(kScenes / "flag.json"));
+}
+
+TEST(SceneFile, CameraKeyframesInterpolateThroughEveryKey) {
+    CameraSpec spec;
+    spec.keys = {{0.0f, {0, 1, 5}, {0, 0, 0}, 40}, {1.0f, {2, 1, 3}, {1, 0, 0}, 50}, {3.0f, {4, 2, 0}, {2, 0, -1}, 60}};
+    for (const CameraKey& k : spec.keys) {
+        const Camera c = camera_at(spec, k.time, 1.5f);
+        EXPECT_NEAR(glm::distance(c.eye, k.eye), 0.0f, 1e-5f);
+        EXPECT_NEAR(glm::distance(c.lookat, k.lookat), 0.0f, 1e-5f);
+        EXPECT_NEAR(c.fovy_deg, k.fovy_deg, 1e-4f);
+        EXPECT_EQ(c.aspect, 1.5f);
+    }
+    EXPECT_EQ(camera_at(spec, -1.0f, 1.0f).eye, spec.keys.front().eye);  // holds before the first key
+    EXPECT_EQ(camera_at(spec, 9.0f, 1.0f).eye, spec.keys.back().eye);    // and after the last
+    // Continuous: small steps in time give small steps in position.
+    glm::vec3 last = camera_at(spec, 0.0f, 1.0f).eye;
+    for (float t = 0.01f; t <= 3.0f; t += 0.01f) {
+        const glm::vec3 e = camera_at(spec, t, 1.0f).eye;
+        EXPECT_LT(glm::distance(e, last), 0.1f) << t;
+        last = e;
+    }
+}
+
+TEST(SceneFile, SnakeRestsOnTheGroundAndKeepsItsLength) {
+    SnakeSpec s;
+    const GroundHeight ground = [](float x, float z) { return 0.3f * std::sin(x) + 0.1f * z; };
+    for (float t : {0.0f, 0.7f, 5.3f}) {
+        const std::vector<glm::vec3> spine = snake_spine(s, t, ground);
+        ASSERT_EQ(int(spine.size()), s.control_points);
+        float arc = 0.0f;
+        for (size_t i = 0; i < spine.size(); ++i) {
+            // Above the sand, by less than the body's height (+ the raised head).
+            const float above = spine[i].y - ground(spine[i].x, spine[i].z);
+            EXPECT_GE(above, 0.0f);
+            EXPECT_LE(above, s.width * (s.height_ratio + 0.5f));
+            if (i > 0) arc += glm::distance(glm::vec2(spine[i].x, spine[i].z), glm::vec2(spine[i - 1].x, spine[i - 1].z));
+        }
+        // The path spacing keeps the body near its length (the sway adds a little).
+        EXPECT_GT(arc, 0.8f * s.length);
+        EXPECT_LT(arc, 1.5f * s.length);
+        const Mesh body = snake_body(s, spine);
+        EXPECT_EQ(body.vertex_count(), size_t(s.tessellation.x + 1) * size_t(s.tessellation.y + 1));
+        for (const glm::vec3& n : body.normals) ASSERT_TRUE(std::isfinite(n.x) && std::isfinite(n.y) && std::isfinite(n.z));
+    }
+    // It moves: the head is elsewhere a second later.
+    EXPECT_GT(glm::distance(snake_spine(s, 0.0f, ground).back(), snake_spine(s, 1.0f, ground).back()), 0.05f);
+}

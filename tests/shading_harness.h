@@ -1,0 +1,147 @@
+// Test support for the shading tests: a brute-force visibility pass (one ray per pixel centre
+// against every triangle, nearest hit wins) so that the shading goldens do not depend on the
+// rasterizer, and golden-image comparison with a tolerance and a diff image on failure.
+#pragma once
+#include <glm/glm.hpp>
+
+#include <cstdlib>
+#include <filesystem>
+#include <string>
+#include <vector>
+
+#include "raster/image_io.h"
+#include "raster/output/frame.h"
+#include "raster/scene/scene.h"
+#include "raster/shade/frame_shading.h"
+
+namespace tessera::test {
+
+// Ray through the centre of pixel (x, y), as FrameShading's background computes it.
+inline glm::vec3 pixel_ray(const Camera& camera, int width, int height, int x, int y) {
+    const glm::mat4 view = camera.view(), projection = camera.projection();
+    const float xn = 2.0f * (float(x) + 0.5f) / float(width) - 1.0f;
+    const float yn = 1.0f - 2.0f * (float(y) + 0.5f) / float(height);
+    const glm::vec3 u(view[0][0], view[1][0], view[2][0]), v(view[0][1], view[1][1], view[2][1]),
+        w(view[0][2], view[1][2], view[2][2]);
+    return u * (xn / projection[0][0]) + v * (yn / projection[1][1]) - w;
+}
+
+// Moeller-Trumbore; returns the ray parameter or -1.
+inline float intersect(glm::vec3 origin, glm::vec3 dir, glm::vec3 a, glm::vec3 b, glm::vec3 c) {
+    const glm::vec3 e1 = b - a, e2 = c - a, p = glm::cross(dir, e2);
+    const float det = glm::dot(e1, p);
+    if (std::abs(det) < 1e-12f) return -1.0f;
+    const float inv = 1.0f / det;
+    const glm::vec3 s = origin - a;
+    const float u = glm::dot(s, p) * inv;
+    if (u < 0.0f || u > 1.0f) return -1.0f;
+    const glm::vec3 q = glm::cross(s, e1);
+    const float v = glm::dot(dir, q) * inv;
+    if (v < 0.0f || u + v > 1.0f) return -1.0f;
+    return glm::dot(e2, q) * inv;
+}
+
+// Nearest opaque triangle per pixel (depth left at 1: shading does not read it).
+inline VisibilityBuffer cast_visibility(const BakedScene& baked, const Scene& scene, int width, int height,
+                                        std::vector<float>* nearest = nullptr) {
+    VisibilityBuffer vis;
+    vis.reset(width, height);
+    if (nearest) nearest->assign(size_t(width) * size_t(height), 1e30f);
+    const Mesh& m = baked.mesh;
+    for (int y = 0; y < height; ++y)
+        for (int x = 0; x < width; ++x) {
+            const glm::vec3 dir = pixel_ray(scene.camera, width, height, x, y);
+            float best = 1e30f;
+            for (size_t t = 0; t < m.triangle_count(); ++t) {
+                if (scene.materials[baked.triangle_material[t]].transparent()) continue;
+                const float d = intersect(scene.camera.eye, dir, m.positions[m.indices[3 * t]],
+                                          m.positions[m.indices[3 * t + 1]], m.positions[m.indices[3 * t + 2]]);
+                if (d > 0.0f && d < best) {
+                    best = d;
+                    vis.triangle[size_t(y) * size_t(width) + size_t(x)] = uint32_t(t);
+                }
+            }
+            if (nearest) (*nearest)[size_t(y) * size_t(width) + size_t(x)] = best;
+        }
+    return vis;
+}
+
+// The full test pipeline: bake, cast, shade the opaque pass, then blend the transparent
+// triangles' covered pixels in submission (triangle id) order.
+inline Frame render(const Scene& scene, int width, int height) {
+    const BakedScene baked = bake(scene);
+    std::vector<float> nearest;
+    const VisibilityBuffer vis = cast_visibility(baked, scene, width, height, &nearest);
+    RenderState state{scene.camera, width, height, scene.lights};
+    const FrameShading shading(baked, scene, state);
+    Frame frame = shade_visibility(shading, vis);
+    std::vector<CoveredPixel> transparent;
+    const Mesh& m = baked.mesh;
+    for (size_t t = 0; t < m.triangle_count(); ++t) {
+        if (!scene.materials[baked.triangle_material[t]].transparent()) continue;
+        for (int y = 0; y < height; ++y)
+            for (int x = 0; x < width; ++x) {
+                const float d = intersect(scene.camera.eye, pixel_ray(scene.camera, width, height, x, y),
+                                          m.positions[m.indices[3 * t]], m.positions[m.indices[3 * t + 1]],
+                                          m.positions[m.indices[3 * t + 2]]);
+                if (d > 0.0f && d < nearest[size_t(y) * size_t(width) + size_t(x)])
+                    transparent.push_back({x, y, uint32_t(t)});
+            }
+    }
+    TileTarget whole;
+    whole.width = width;
+    whole.height = height;
+    whole.colour = frame.pixels.data();
+    whole.colour_stride = size_t(width);
+    blend_fragments(shading, transparent, whole);
+    return frame;
+}
+
+inline std::filesystem::path golden_path(const std::string& name) {
+    return std::filesystem::path(TESSERA_TEST_DATA) / "golden" / (name + ".png");
+}
+
+// Compares the frame's 8-bit sRGB encoding with tests/data/golden/NAME.png: at most
+// `max_bad_fraction` of the pixels may differ by more than `tolerance` (of 255) in a channel.
+// Golden files are committed; TESSERA_UPDATE_GOLDEN=1 rewrites them (never done implicitly:
+// a missing golden is a failure). On failure the actual image and a diff image (differences
+// x8) are written to the temporary directory and named in `why`.
+inline bool matches_golden(const Frame& frame, const std::string& name, std::string& why,
+                           int tolerance = 3, double max_bad_fraction = 0.002) {
+    const std::vector<uint8_t> actual = encode_srgb8(frame);
+    const ImageView view{frame.width, frame.height, 4, PixelType::u8, actual.data()};
+    if (const char* update = std::getenv("TESSERA_UPDATE_GOLDEN"); update && std::string(update) == "1") {
+        write_image(golden_path(name), view);
+        return true;
+    }
+    if (!std::filesystem::exists(golden_path(name))) {
+        why = "golden " + golden_path(name).string() + " is missing (TESSERA_UPDATE_GOLDEN=1 creates it)";
+        return false;
+    }
+    const FloatImage golden = read_image(golden_path(name));
+    if (golden.width != frame.width || golden.height != frame.height || golden.channels != 4) {
+        why = "golden " + name + " has a different size or channel count";
+        return false;
+    }
+    std::vector<uint8_t> diff(actual.size(), 255);
+    size_t bad = 0;
+    for (size_t i = 0; i < actual.size() / 4; ++i) {
+        bool pixel_bad = false;
+        for (int c = 0; c < 4; ++c) {
+            const int g = int(golden.pixels[4 * i + size_t(c)] * 255.0f + 0.5f);
+            const int d = std::abs(g - int(actual[4 * i + size_t(c)]));
+            pixel_bad |= d > tolerance;
+            if (c < 3) diff[4 * i + size_t(c)] = uint8_t(std::min(255, d * 8));
+        }
+        bad += pixel_bad;
+    }
+    if (double(bad) <= max_bad_fraction * double(actual.size() / 4)) return true;
+    const auto dir = std::filesystem::temp_directory_path() / "tessera_golden_failures";
+    std::filesystem::create_directories(dir);
+    write_image(dir / (name + "_actual.png"), view);
+    write_image(dir / (name + "_diff.png"), {frame.width, frame.height, 4, PixelType::u8, diff.data()});
+    why = std::to_string(bad) + " pixels differ from golden " + name + "; see " + (dir / (name + "_diff.png")).string();
+    return false;
+}
+
+}  // namespace tessera::test
