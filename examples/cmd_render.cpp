@@ -23,6 +23,8 @@
 #include <vector>
 
 #include "examples/command.h"
+#include "examples/distribute.h"
+#include "examples/render_farm.h"
 #include "raster/error.h"
 #include "raster/image_io.h"
 #include "raster/output/frame.h"
@@ -53,6 +55,7 @@ struct Options {
     float fps = 0.0f;
     int threads = 0;
     bool resume = false, stats = false, quiet = false;
+    FarmOptions farm;  // --claim, --checkpoint-every, --distribute (render_farm.h)
 };
 
 std::string lower_extension(const fs::path& p) {
@@ -153,12 +156,15 @@ int run(const Options& o, const std::string& executable) {
         throw UsageError("--out '" + pattern.text() + "': no image format for that extension (use .png, .exr or .tif)");
     const RendererKind renderer = parse_renderer(o.renderer);
     const ShadowMode shadows = parse_shadow_mode(o.shadows.empty() ? spec.shadows : o.shadows);
+    const DistributeMode mode = parse_distribute(o.farm.distribute);
+    if (mode == DistributeMode::tiles && o.farm.claim)
+        throw UsageError("--claim works on whole frames: not with --distribute tiles");
 
     prepare_output_directory(pattern.path_for(range.first));
     std::vector<int> frames;
     int skipped = 0;
     const std::vector<int> shard_frames = frames_of_shard(range, shard);
-    if (o.resume) {
+    if (o.resume && !o.farm.claim) {  // with --claim, a frame's temporaries go when its claim is won
         std::vector<fs::path> paths;
         for (int f : shard_frames) paths.push_back(pattern.path_for(f));
         remove_stale_temporaries(paths);
@@ -168,6 +174,10 @@ int run(const Options& o, const std::string& executable) {
         else frames.push_back(f);
     }
 
+    const std::unique_ptr<Distribution> distribution = make_distribution(mode, std::move(frames));
+    Distribution& dist = *distribution;
+    const bool rank0 = dist.rank() == 0;
+
     Trace trace;
     if (!o.trace.empty()) trace.activate();
     AnimatedScene scene = [&] {
@@ -176,23 +186,63 @@ int run(const Options& o, const std::string& executable) {
     }();
     FrameRenderer frame_renderer(scene, width, height, renderer, shadows);
     FrameWriter writer(2);
+    FarmRun farm(o.farm, o.resume, scene, scene_name, pattern.path_for(range.first));
+    const auto [rows_first, rows_last] = dist.rows(height);
+    frame_renderer.set_rows(rows_first, rows_last);
+    // Distributed: a failure is handed to rank 0 (which names the rank and the frame) instead
+    // of ending this rank alone. A failed write names the first frame not yet on disk.
+    std::vector<std::pair<fs::path, int>> submitted;
+    const auto failed_write = [&] {
+        const std::vector<fs::path> written = writer.written();
+        for (const auto& [path, f] : submitted)
+            if (std::find(written.begin(), written.end(), path) == written.end()) return f;
+        return submitted.empty() ? -1 : submitted.back().second;
+    };
+    std::string tile_failure;  // tiles: a write failure on rank 0, reported at the next gather
+    frames = dist.pending();
 
     const bool tty = isatty(fileno(stderr)) != 0 && !o.quiet;
-    if (!o.quiet && skipped > 0) std::fprintf(stderr, "resume: %d complete frame(s) skipped\n", skipped);
+    if (!o.quiet && skipped > 0 && rank0) std::fprintf(stderr, "resume: %d complete frame(s) skipped\n", skipped);
     std::signal(SIGINT, on_interrupt);
     const auto start = std::chrono::steady_clock::now();
     std::vector<double> totals, animate, bake, bvh, visibility, tiles;
     size_t done = 0;
-    for (int f : frames) {
+    while (const std::optional<int> next = dist.next_frame()) {
         if (g_interrupted) break;
+        const int f = *next;
+        const fs::path path = pattern.path_for(f);
+        if (!farm.claim(path, width, height)) continue;
         FrameStats st;
         Frame frame;
-        {
+        std::string failure = std::move(tile_failure);
+        tile_failure.clear();
+        try {
+            farm.simulate(f);
             TraceScope t("frame", "frame", f);
             frame = frame_renderer.render(float(f) / fps, &st);
+        } catch (const std::exception& e) {
+            if (dist.ranks() == 1) throw;
+            if (failure.empty()) failure = e.what();
         }
-        const fs::path path = pattern.path_for(f);
-        writer.submit(path, encode(frame, path));
+        if (mode == DistributeMode::tiles) {
+            if (!dist.gather(f, frame, failure)) continue;
+        } else if (!failure.empty()) {
+            dist.fail(f, failure);
+            break;
+        }
+        try {
+            writer.submit(path, encode(frame, path));
+            submitted.emplace_back(path, f);
+        } catch (const Error& e) {
+            if (dist.ranks() == 1) throw;
+            if (mode == DistributeMode::tiles) {
+                tile_failure = e.what();
+                continue;
+            }
+            dist.fail(failed_write(), e.what());
+            break;
+        }
+        farm.published(writer.written());
         ++done;
         totals.push_back(st.total_ms);
         animate.push_back(st.animate_ms);
@@ -222,7 +272,14 @@ int run(const Options& o, const std::string& executable) {
                          path.string().c_str());
         }
     }
-    writer.finish();
+    try {
+        writer.finish();
+    } catch (const Error& e) {
+        if (dist.ranks() == 1) throw;
+        dist.fail(failed_write(), e.what());
+    }
+    farm.published(writer.written());
+    if (!dist.finish()) return 1;  // rank 0 reports the failure (finish() throws there)
     if (tty) std::fputc('\n', stderr);
     if (!o.trace.empty()) {
         trace.deactivate();
@@ -272,6 +329,7 @@ TESSERA_COMMAND(20, [](CLI::App& root) -> Run {
     cmd->add_flag("--stats", o->stats, "Print per-stage times per frame and a summary");
     cmd->add_option("--trace", o->trace, "Write a Chrome trace event JSON (Perfetto, chrome://tracing)");
     cmd->add_flag("--quiet", o->quiet, "No progress output");
+    add_farm_options(*cmd, o->farm);
     return [o] { return run(*o, executable_path()); };
 });
 

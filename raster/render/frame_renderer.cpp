@@ -104,6 +104,7 @@ struct FrameRenderer::Impl {
     std::optional<rt::RayDevice> device;
     std::vector<procedural::TerrainField> terrains;
     march::Environment environment;
+    int rows_first = 0, rows_last = 1 << 30;  // set_rows
 
     Impl(AnimatedScene& s, int w, int h, RendererKind r, ShadowMode sh)
         : scene(s), width(w), height(h), renderer(r), shadows(sh),
@@ -128,6 +129,11 @@ FrameRenderer::FrameRenderer(AnimatedScene& scene, int width, int height, Render
 }
 
 FrameRenderer::~FrameRenderer() = default;
+
+void FrameRenderer::set_rows(int first, int last) {
+    impl_->rows_first = first;
+    impl_->rows_last = last;
+}
 
 Frame FrameRenderer::render(float time, FrameStats* stats) {
     FrameStats local;
@@ -225,6 +231,7 @@ Frame FrameRenderer::Impl::render(float time, FrameStats& stats) {
 
     VisibilityBuffer visibility;
     const auto tile_work = [&](const TileView& v) {
+        if (v.y1 <= rows_first || v.y0 >= rows_last) return;
         TraceScope trace("tile", "tile", v.x0, v.y0);
         const TileTarget target{v.x0, v.y0, v.x1 - v.x0, v.y1 - v.y0, v.triangle, v.stride, v.colour, v.colour_stride};
         {
