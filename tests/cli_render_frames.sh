@@ -41,6 +41,9 @@ done
 render --scene snakes --size 64x36 --frames 2 --threads 2 --renderer raytrace --out "$dir/det/rt_2.png" || fail "raytrace"
 render --scene snakes --size 64x36 --frames 2 --threads 1 --renderer raytrace --out "$dir/det/rt_1.png" || fail "raytrace"
 cmp -s "$dir/det/rt_1.png" "$dir/det/rt_2.png" || fail "raytrace differs between 1 and 2 threads"
+render --scene snakes --size 64x36 --frames 2 --threads 1 --shadows map --out "$dir/det/map_1.png" || fail "map"
+render --scene snakes --size 64x36 --frames 2 --threads 2 --shadows map --out "$dir/det/map_2.png" || fail "map"
+cmp -s "$dir/det/map_1.png" "$dir/det/map_2.png" || fail "shadow maps differ between 1 and 2 threads"
 
 # Bad input: one error line, the exit code, nothing written.
 expect_error() {  # $1: exit code, $2: text the message must contain, rest: arguments
@@ -60,7 +63,7 @@ expect_error 2 "shard" --scene flag --shard 2/2 --out "$dir/bad/x_####.png"
 expect_error 2 "would overwrite" --scene flag --frames 1:3 --out "$dir/bad/x.png"
 expect_error 2 "no image format" --scene flag --frames 1 --out "$dir/bad/x.nope"
 expect_error 2 "8192x8192" --scene flag --frames 1 --size 16384x16384 --out "$dir/bad/x.exr"
-expect_error 2 "shadow maps" --scene flag --frames 1 --shadows map --size 8x8 --out "$dir/bad/x.png"
+expect_error 2 "--shadows" --scene flag --frames 1 --shadows soft --size 8x8 --out "$dir/bad/x.png"
 echo '{"objects": [{"type": "sphere", "material": 3}]}' > "$dir/broken.json"
 expect_error 1 "broken.json: /objects/0/material: expected a string, got a number" --scene "$dir/broken.json" --out "$dir/bad/x.png" --frames 1
 expect_error 1 "cannot read scene file" --scene "$dir/missing.json" --out "$dir/bad/x.png" --frames 1

@@ -61,10 +61,12 @@ glm::ivec2 pixel_of(glm::vec3 p, int w, int h) {
 
 }  // namespace
 
-TEST(RenderFrame, ShadowRaysDarkenOnlyTheFloorUnderTheBall) {
+class RenderShadows : public ::testing::TestWithParam<ShadowMode> {};
+
+TEST_P(RenderShadows, DarkenOnlyTheFloorUnderTheBall) {
     const int w = 160, h = 120;
     const Frame lit = render(kBallOverFloor, w, h, RendererKind::raster, ShadowMode::none);
-    const Frame shadowed = render(kBallOverFloor, w, h, RendererKind::raster, ShadowMode::rays);
+    const Frame shadowed = render(kBallOverFloor, w, h, RendererKind::raster, GetParam());
     // Under the ball (the light is straight above): only ambient ka La remains.
     const glm::ivec2 under = pixel_of({0.0f, -1.0f, 0.3f}, w, h);
     const glm::vec4 a = lit.at(under.x, under.y), b = shadowed.at(under.x, under.y);
@@ -78,6 +80,9 @@ TEST(RenderFrame, ShadowRaysDarkenOnlyTheFloorUnderTheBall) {
     const glm::ivec2 top = pixel_of({0.0f, 0.45f, 0.2f}, w, h);
     EXPECT_EQ(lit.at(top.x, top.y), shadowed.at(top.x, top.y));
 }
+
+INSTANTIATE_TEST_SUITE_P(RenderFrame, RenderShadows, ::testing::Values(ShadowMode::rays, ShadowMode::map),
+                         [](const auto& info) { return info.param == ShadowMode::rays ? "rays" : "map"; });
 
 TEST(RenderFrame, RasterAndRayCastAgreeAwayFromEdges) {
     const int w = 160, h = 120;
@@ -93,7 +98,7 @@ TEST(RenderFrame, RasterAndRayCastAgreeAwayFromEdges) {
 }
 
 TEST(RenderFrame, SameBytesWithOneAndTwoThreads) {
-    for (ShadowMode s : {ShadowMode::none, ShadowMode::rays})
+    for (ShadowMode s : {ShadowMode::none, ShadowMode::rays, ShadowMode::map})
         for (RendererKind r : {RendererKind::raster, RendererKind::raytrace}) {
             const Frame one = render(kBallOverFloor, 96, 64, r, s, 1);
             const Frame two = render(kBallOverFloor, 96, 64, r, s, 2);
@@ -138,7 +143,7 @@ TEST(RenderFrame, TraceHasWorkerTracksAndStageAndTileSlices) {
         tracks.insert(e.at("tid").get<int>());
     }
     for (const char* n : {"frame", "animate", "bake", "bvh", "vertex stage", "setup+bin chunk", "raster tile", "tile",
-                          "shade", "shadow rays"})
+                          "shade", "shadow test"})
         EXPECT_TRUE(names.count(n)) << "no slice named " << n;
     // Which workers pick up tiles is the scheduler's choice (one may be busy elsewhere), so
     // only "at least one track, each named" is guaranteed.

@@ -21,6 +21,7 @@
 #include "raster/march/surface_pass.h"
 #include "raster/shade/frame_shading.h"
 #include "raster/shadow/light_mask.h"
+#include "raster/shadow/shadow_map.h"
 #include "raster/shadow/surface_points.h"
 #include "raster/trace.h"
 
@@ -55,33 +56,6 @@ glm::vec3 shadow_target(const Light& light) {
     return light.position.w == 0.0f ? glm::normalize(p) * kDistantLight : p;
 }
 
-march::Sky march_sky(const Background& b, const std::vector<Light>& lights) {
-    march::Sky sky;
-    if (b.kind == Background::Kind::sky) {
-        sky.zenith = b.sky.zenith;
-        sky.horizon = b.sky.horizon;
-        sky.ground = b.sky.ground;
-        sky.sun_direction = glm::normalize(b.sky.sun_direction);
-    }
-    for (const Light& l : lights)
-        if (l.position.w == 0.0f) {
-            sky.sun_direction = glm::normalize(glm::vec3(l.position));
-            break;
-        }
-    return sky;
-}
-
-march::DirectionalLight march_light(const std::vector<Light>& lights) {
-    march::DirectionalLight light;
-    for (const Light& l : lights)
-        if (l.position.w == 0.0f) {
-            light.direction = glm::normalize(glm::vec3(l.position));
-            light.radiance = l.Le;
-            break;
-        }
-    return light;
-}
-
 // The pixels of one tile, wherever they live (the rasterizer's tile view or a full frame).
 struct TileView {
     int x0, y0, x1, y1;
@@ -102,13 +76,11 @@ struct FrameRenderer::Impl {
     ShadowMode shadows;
     Rasterizer rasterizer;
     std::optional<rt::RayDevice> device;
-    std::vector<procedural::TerrainField> terrains;
-    march::Environment environment;
+    std::vector<procedural::TerrainField> terrains;  // one per terrain pass, built once
     int rows_first = 0, rows_last = 1 << 30;  // set_rows
 
     Impl(AnimatedScene& s, int w, int h, RendererKind r, ShadowMode sh)
-        : scene(s), width(w), height(h), renderer(r), shadows(sh),
-          environment(march::Environment::procedural(march_sky(s.scene.background, s.scene.lights))) {
+        : scene(s), width(w), height(h), renderer(r), shadows(sh) {
         for (const PassSpec& p : scene.spec.passes)
             if (p.kind == PassSpec::Kind::terrain) terrains.emplace_back(p.terrain);
     }
@@ -119,10 +91,8 @@ struct FrameRenderer::Impl {
 FrameRenderer::FrameRenderer(AnimatedScene& scene, int width, int height, RendererKind renderer,
                              ShadowMode shadows) {
     if (width <= 0 || height <= 0) throw std::invalid_argument("frame size must be positive");
-    if (shadows == ShadowMode::map)
-        throw std::invalid_argument("--shadows map: shadow maps are not in this build yet (use rays or none)");
-    if (shadows == ShadowMode::rays && scene.scene.lights.size() > 4)
-        throw std::invalid_argument("--shadows rays: at most 4 lights cast shadows, the scene has " +
+    if (shadows != ShadowMode::none && scene.scene.lights.size() > 4)
+        throw std::invalid_argument("--shadows: at most 4 lights cast shadows, the scene has " +
                                     std::to_string(scene.scene.lights.size()));
     impl_ = std::make_unique<Impl>(scene, width, height, renderer, shadows);
     if (renderer == RendererKind::raytrace || shadows == ShadowMode::rays) impl_->device.emplace();
@@ -178,7 +148,9 @@ Frame FrameRenderer::Impl::render(float time, FrameStats& stats) {
     const uint32_t all_lit = (1u << light_count) - 1u;
     std::vector<std::unique_ptr<FrameShading>> subset_shading;
     std::vector<glm::vec3> light_targets;
-    if (shadows == ShadowMode::rays && light_count > 0) {
+    std::vector<shadow::ShadowMap> maps;
+    shadow::LightTest light_test;
+    if (shadows != ShadowMode::none && light_count > 0) {
         TraceScope trace("shadow setup");
         subset_shading.resize(all_lit);
         tbb::parallel_for(uint32_t(0), all_lit, [&](uint32_t mask) {
@@ -188,13 +160,20 @@ Frame FrameRenderer::Impl::render(float time, FrameStats& stats) {
             subset_shading[mask] = std::make_unique<FrameShading>(baked, s, std::move(dimmed));
         });
         for (const Light& l : s.lights) light_targets.push_back(shadow_target(l));
+        if (shadows == ShadowMode::rays) {
+            light_test = rt::shadow_ray_test(*rays);
+        } else {
+            TraceScope map_trace("shadow maps");
+            maps.reserve(light_count);
+            for (const glm::vec3& light : light_targets) maps.emplace_back(rasterizer, baked.mesh, light);
+            light_test = shadow::shadow_map_test(maps);
+        }
     }
     const rt::PixelRays pixel_rays(view_projection, width, height);
     std::atomic<uint64_t> shadowed{0};
 
     // The scene's compute passes for this frame.
     const march::RayGenerator march_rays(s.camera, width, height);
-    const march::DirectionalLight sun = march_light(s.lights);
     std::vector<march::MetaballField> metaballs;
     for (const PassSpec& p : scene.spec.passes)
         if (p.kind == PassSpec::Kind::metaballs) {
@@ -206,17 +185,17 @@ Frame FrameRenderer::Impl::render(float time, FrameStats& stats) {
     {
         size_t terrain_i = 0, metaball_i = 0;
         for (const PassSpec& p : scene.spec.passes) {
-            const march::SurfaceLook look{p.material, sun, {}};
+            const march::SurfaceLook look{p.material, s.lights, {}};
             switch (p.kind) {
                 case PassSpec::Kind::terrain: {
                     auto pass = std::make_shared<march::SurfacePass<march::SlabSurface<procedural::TerrainField>>>(
-                        march::terrain_surface(terrains[terrain_i++]), march_rays, p.settings, look, environment);
+                        march::terrain_surface(terrains[terrain_i++]), march_rays, p.settings, look, s.background);
                     compute_passes.push_back([pass](const march::PassTarget& t) { pass->run(t); });
                     break;
                 }
                 case PassSpec::Kind::metaballs: {
                     auto pass = std::make_shared<march::SurfacePass<march::MetaballSurface>>(
-                        march::MetaballSurface{metaballs[metaball_i++]}, march_rays, p.settings, look, environment);
+                        march::MetaballSurface{metaballs[metaball_i++]}, march_rays, p.settings, look, s.background);
                     compute_passes.push_back([pass](const march::PassTarget& t) { pass->run(t); });
                     break;
                 }
@@ -239,13 +218,13 @@ Frame FrameRenderer::Impl::render(float time, FrameStats& stats) {
             shade_tile(shading, target);
         }
         if (!subset_shading.empty()) {
-            TraceScope t("shadow rays", "tile");
+            TraceScope t("shadow test", "tile");
             shadow::SurfacePoints points;
             shadow::gather_surface_points(visibility, baked.mesh, pixel_rays, rt::ImageTile{v.x0, v.y0, v.x1, v.y1},
                                           points);
             std::vector<uint8_t> lit(points.size(), 0), facing(points.size(), 0);
             shadow::facing_lights(points, light_targets, facing);
-            rt::trace_shadow_rays(*rays, points, light_targets, lit);
+            light_test(points, light_targets, lit);
             std::vector<std::vector<CoveredPixel>> groups(all_lit);
             for (size_t i = 0; i < points.size(); ++i) {
                 const uint32_t mask = (lit[i] | ~facing[i]) & all_lit;

@@ -5,8 +5,10 @@
 // terrain and metaballs, fog). The same tile function serves both renderers, so they differ
 // only in how visibility was found.
 //
-// Shadows (--shadows rays): each tile's visible points are tested against every light with
-// Embree occlusion rays (shadow/surface_points.h, embree/shadow_rays.h). A point that faces a
+// Shadows: each tile's visible points (shadow/surface_points.h) are tested against every light
+// with Embree occlusion rays (--shadows rays, embree/shadow_rays.h) or shadow maps rendered by
+// the rasterizer from each light (--shadows map, shadow/shadow_map.h); a directional light is
+// treated as a point light 10^4 units away along its direction. A point that faces a
 // light but cannot see it is re-shaded with that light's emission Le set to zero, which is
 // exactly the seed's formula with the light's direct term removed (ambient ka La stays), so
 // shadowed and lit pixels come from the same shading kernel. Points facing away from a light
@@ -40,8 +42,7 @@ struct FrameStats {
 
 class FrameRenderer {
 public:
-    // Throws std::invalid_argument for a bad size, shadow rays with more than 4 lights, or
-    // a shadow mode this build does not provide.
+    // Throws std::invalid_argument for a bad size or shadows with more than 4 lights.
     FrameRenderer(AnimatedScene& scene, int width, int height, RendererKind renderer, ShadowMode shadows);
     ~FrameRenderer();
     FrameRenderer(const FrameRenderer&) = delete;
