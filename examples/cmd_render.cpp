@@ -199,6 +199,7 @@ int run(const Options& o, const std::string& executable) {
         return submitted.empty() ? -1 : submitted.back().second;
     };
     std::string tile_failure;  // tiles: a write failure on rank 0, reported at the next gather
+    int tile_failure_frame = -1;
     frames = dist.pending();
 
     const bool tty = isatty(fileno(stderr)) != 0 && !o.quiet;
@@ -225,7 +226,9 @@ int run(const Options& o, const std::string& executable) {
             if (failure.empty()) failure = e.what();
         }
         if (mode == DistributeMode::tiles) {
-            if (!dist.gather(f, frame, failure)) continue;
+            const int reported = tile_failure_frame >= 0 && !failure.empty() ? tile_failure_frame : f;
+            tile_failure_frame = -1;
+            if (!dist.gather(reported, frame, failure)) continue;
         } else if (!failure.empty()) {
             dist.fail(f, failure);
             break;
@@ -237,6 +240,7 @@ int run(const Options& o, const std::string& executable) {
             if (dist.ranks() == 1) throw;
             if (mode == DistributeMode::tiles) {
                 tile_failure = e.what();
+                tile_failure_frame = failed_write();
                 continue;
             }
             dist.fail(failed_write(), e.what());

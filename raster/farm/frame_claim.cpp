@@ -42,7 +42,10 @@ bool claim_is_stale(const ClaimOwner& owner, const ClaimOwner& self, const Claim
 }
 
 fs::path claim_path(const fs::path& frame) {
-    return frame.parent_path() / ("." + frame.filename().string() + ".claim");
+    std::string name = ".";  // appended piecewise: GCC 12 misreports "." + string (-Wrestrict)
+    name += frame.filename().string();
+    name += ".claim";
+    return frame.parent_path() / name;
 }
 
 namespace {
