@@ -300,6 +300,9 @@ int run(const Options& o, const std::string& executable) {
         std::fprintf(stderr, "tessera: interrupted: %zu frame(s) written; rerun with --resume to continue\n", done);
         return 130;
     }
+    if (!o.quiet && farm.held_elsewhere() > 0)
+        std::fprintf(stderr, "claim: %d frame(s) claimed by other processes were left to them\n",
+                     farm.held_elsewhere());
     if (!o.quiet && !tty)
         std::fprintf(stderr, "rendered %zu frame(s) in %.2f s\n", done, elapsed);
     return 0;

@@ -197,7 +197,7 @@ public:
             return false;
         }
         const int row = frame.width * 4;  // floats per row
-        std::vector<int> counts(size_t(ranks_)), displs(size_t(ranks_));
+        std::vector<int> counts(static_cast<size_t>(ranks_)), displs(static_cast<size_t>(ranks_));
         for (int r = 0; r < ranks_; ++r) {
             const auto [y0, y1] = band(r, frame.height);
             counts[size_t(r)] = (y1 - y0) * row;
