@@ -1,13 +1,16 @@
 // --distribute frames|tiles over MPI (Open MPI). Only rank 0's dispatcher thread (frames) or
 // the main thread (tiles, workers) calls MPI, one thread at a time: MPI_THREAD_SERIALIZED.
-// The dispatcher polls with MPI_Test and a short sleep instead of a blocking receive, which
-// Open MPI implements as a busy loop that would take a core from rank 0's own rendering.
+// Every wait that can be long (the dispatcher's receive, the band gathers, the final barrier)
+// polls a non-blocking operation with a short sleep instead of a blocking call, which Open MPI
+// implements as a busy loop that would take a core from the ranks still rendering.
 #include <mpi.h>
 
 #include <algorithm>
 #include <array>
 #include <chrono>
+#include <cstdio>
 #include <cstring>
+#include <exception>
 #include <mutex>
 #include <thread>
 
@@ -30,6 +33,17 @@ struct Message {
     int32_t frame = -1;
     std::array<char, 1000> text{};
 };
+
+// Waits for a non-blocking operation without spinning: Open MPI's blocking calls poll in a
+// busy loop, so a rank that waits for slower ones (at a gather, at the end) would take CPU
+// from them on a shared or oversubscribed node. 200 us is far below a frame or a band.
+void wait_politely(MPI_Request& request, MPI_Status* status = MPI_STATUS_IGNORE) {
+    for (int flag = 0;;) {
+        MPI_Test(&request, &flag, status);
+        if (flag) return;
+        std::this_thread::sleep_for(std::chrono::microseconds(200));
+    }
+}
 
 void check(int rc, const char* what) {
     if (rc != MPI_SUCCESS) throw Error(std::string("MPI: ") + what + " failed");
@@ -56,12 +70,26 @@ public:
         MPI_Bcast(pending.data(), count, MPI_INT, 0, MPI_COMM_WORLD);
         pending_ = std::move(pending);
     }
-    ~MpiBase() override { MPI_Finalize(); }
+    ~MpiBase() override {
+        if (unwinding()) {
+            // An error outside the frame protocol (main prints it next): the other ranks may
+            // be waiting for this one, so no barrier and no MPI_Finalize. The rank exits 1
+            // and mpirun ends the job.
+            std::fprintf(stderr, "tessera: rank %d stops on the error below; the job is aborted\n", rank_);
+            return;
+        }
+        // MPI_Finalize synchronises like a barrier, busily: reach it together, politely.
+        MPI_Request barrier;
+        MPI_Ibarrier(MPI_COMM_WORLD, &barrier);
+        wait_politely(barrier);
+        MPI_Finalize();
+    }
     int rank() const override { return rank_; }
     int ranks() const override { return ranks_; }
     const std::vector<int>& pending() const override { return pending_; }
 
 protected:
+    static bool unwinding() { return std::uncaught_exceptions() > 0; }
     int rank_ = 0, ranks_ = 1;
     std::vector<int> pending_;
 };
@@ -73,7 +101,9 @@ public:
     }
     ~MpiFrames() override {
         close();
-        if (dispatcher_.joinable()) dispatcher_.join();
+        if (!dispatcher_.joinable()) return;
+        if (unwinding()) dispatcher_.detach();  // it waits for workers that may never answer
+        else dispatcher_.join();
     }
 
     std::optional<int> next_frame() override {
@@ -140,11 +170,7 @@ private:
             MPI_Request request;
             MPI_Status status;
             MPI_Irecv(&m, sizeof m, MPI_BYTE, MPI_ANY_SOURCE, kTagRequest, MPI_COMM_WORLD, &request);
-            for (int flag = 0;;) {
-                MPI_Test(&request, &flag, &status);
-                if (flag) break;
-                std::this_thread::sleep_for(std::chrono::microseconds(200));
-            }
+            wait_politely(request, &status);
             if (m.kind == Message::request) {
                 const int frame = take().value_or(-1);
                 MPI_Send(&frame, 1, MPI_INT, status.MPI_SOURCE, kTagFrame, MPI_COMM_WORLD);
@@ -184,7 +210,10 @@ public:
         std::strncpy(mine.data(), failure.c_str(), mine.size() - 1);
         if (failure.empty()) mine[0] = '\0';
         std::vector<char> all(rank_ == 0 ? mine.size() * size_t(ranks_) : 0);
-        MPI_Gather(mine.data(), int(mine.size()), MPI_CHAR, all.data(), int(mine.size()), MPI_CHAR, 0, MPI_COMM_WORLD);
+        MPI_Request request;
+        MPI_Igather(mine.data(), int(mine.size()), MPI_CHAR, all.data(), int(mine.size()), MPI_CHAR, 0, MPI_COMM_WORLD,
+                    &request);
+        wait_politely(request);  // the ranks that finished their band first wait here
         int failed_rank = -1;
         if (rank_ == 0)
             for (int r = 0; r < ranks_ && failed_rank < 0; ++r)
@@ -206,10 +235,12 @@ public:
         float* pixels = reinterpret_cast<float*>(frame.pixels.data());
         const auto [y0, y1] = rows(frame.height);
         if (rank_ == 0)
-            MPI_Gatherv(MPI_IN_PLACE, 0, MPI_FLOAT, pixels, counts.data(), displs.data(), MPI_FLOAT, 0, MPI_COMM_WORLD);
+            MPI_Igatherv(MPI_IN_PLACE, 0, MPI_FLOAT, pixels, counts.data(), displs.data(), MPI_FLOAT, 0, MPI_COMM_WORLD,
+                         &request);
         else
-            MPI_Gatherv(pixels + size_t(y0) * size_t(row), (y1 - y0) * row, MPI_FLOAT, nullptr, nullptr, nullptr,
-                        MPI_FLOAT, 0, MPI_COMM_WORLD);
+            MPI_Igatherv(pixels + size_t(y0) * size_t(row), (y1 - y0) * row, MPI_FLOAT, nullptr, nullptr, nullptr,
+                         MPI_FLOAT, 0, MPI_COMM_WORLD, &request);
+        wait_politely(request);
         return rank_ == 0;
     }
 
