@@ -24,6 +24,7 @@
 
 #include "examples/command.h"
 #include "examples/distribute.h"
+#include "examples/progress.h"
 #include "examples/render_farm.h"
 #include "raster/error.h"
 #include "raster/image_io.h"
@@ -41,9 +42,13 @@ namespace {
 
 namespace fs = std::filesystem;
 
-// Set by SIGINT, read between frames: the render stops after the frame in hand.
+// Set by SIGINT, read between frames: the render stops after the frame in hand. The default
+// action comes back at once, so a second Ctrl-C ends a frame that takes too long.
 volatile std::sig_atomic_t g_interrupted = 0;
-extern "C" void on_interrupt(int) { g_interrupted = 1; }
+extern "C" void on_interrupt(int) {
+    g_interrupted = 1;
+    std::signal(SIGINT, SIG_DFL);
+}
 
 // Frames beyond this many pixels would need the streamed tiled output (not built yet):
 // 8192 x 8192 keeps the float frame, visibility and encode buffers near 2 GiB.
@@ -112,14 +117,6 @@ void remove_stale_temporaries(const std::vector<fs::path>& frames) {
         }
         for (const fs::path& p : stale) fs::remove(p, ec);
     }
-}
-
-std::string format_seconds(double s) {
-    char buf[32];
-    if (s >= 3600) std::snprintf(buf, sizeof buf, "%dh%02dm", int(s / 3600), int(s / 60) % 60);
-    else if (s >= 60) std::snprintf(buf, sizeof buf, "%dm%02ds", int(s / 60), int(s) % 60);
-    else std::snprintf(buf, sizeof buf, "%.1fs", s);
-    return buf;
 }
 
 double median(std::vector<double> v) {
@@ -203,6 +200,10 @@ int run(const Options& o, const std::string& executable) {
     frames = dist.pending();
 
     const bool tty = isatty(fileno(stderr)) != 0 && !o.quiet;
+    // On a terminal: a bar redrawn in place ("frame k/n, frames/s, ETA"); otherwise one plain
+    // line per frame, which logs and farm schedulers keep.
+    std::unique_ptr<Progress> progress;
+    if (tty && !frames.empty()) progress = std::make_unique<Progress>(scene_name, int64_t(frames.size()), "frames");
     if (!o.quiet && skipped > 0 && rank0) std::fprintf(stderr, "resume: %d complete frame(s) skipped\n", skipped);
     std::signal(SIGINT, on_interrupt);
     const auto start = std::chrono::steady_clock::now();
@@ -253,24 +254,18 @@ int run(const Options& o, const std::string& executable) {
         bake.push_back(st.bake_ms);
         bvh.push_back(st.bvh_ms);
         visibility.push_back(st.visibility_ms);
-        tiles.push_back(st.raster.passes_ms);
-        const double elapsed = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-        const double rate = double(done) / elapsed;
+        tiles.push_back(st.tiles_ms);
         if (o.stats)
             std::fprintf(stderr,
-                         "%sframe %d: %.1f ms (animate %.1f, bake %.1f, bvh %.1f, vertex %.1f, setup+bin %.1f, "
-                         "raster+tiles %.1f, of which tile passes %.1f), %llu triangles, %llu shadowed pixels\n",
+                         "%sframe %d: %.1f ms (animate %.1f, bake %.1f, bvh %.1f, visibility %.1f [vertex %.1f, "
+                         "setup+bin %.1f], tiles %.1f [shade, shadows, passes]), %llu triangles, %llu shadowed "
+                         "pixels\n",
                          tty ? "\r\033[K" : "", f, st.total_ms, st.animate_ms, st.bake_ms, st.bvh_ms,
-                         st.raster.vertex_ms, st.raster.setup_bin_ms, st.visibility_ms, st.raster.passes_ms,
+                         st.visibility_ms, st.raster.vertex_ms, st.raster.setup_bin_ms, st.tiles_ms,
                          static_cast<unsigned long long>(st.triangles),
                          static_cast<unsigned long long>(st.shadowed_pixels));
-        if (tty) {
-            constexpr int kBar = 24;
-            const int filled = int(kBar * done / frames.size());
-            std::fprintf(stderr, "\r\033[K[%s%s] frame %zu/%zu  %.2f fps  ETA %s", std::string(size_t(filled), '#').c_str(),
-                         std::string(size_t(kBar - filled), '.').c_str(), done, frames.size(), rate,
-                         format_seconds(double(frames.size() - done) / rate).c_str());
-            std::fflush(stderr);
+        if (progress) {
+            progress->update(int64_t(done));
         } else if (!o.quiet) {
             std::fprintf(stderr, "frame %d (%zu/%zu) %.1f ms -> %s\n", f, done, frames.size(), st.total_ms,
                          path.string().c_str());
@@ -283,8 +278,9 @@ int run(const Options& o, const std::string& executable) {
         dist.fail(failed_write(), e.what());
     }
     farm.published(writer.written());
+    if (progress && !g_interrupted) progress->finish();
+    progress.reset();
     if (!dist.finish()) return 1;  // rank 0 reports the failure (finish() throws there)
-    if (tty) std::fputc('\n', stderr);
     if (!o.trace.empty()) {
         trace.deactivate();
         trace.write(o.trace);
@@ -293,7 +289,7 @@ int run(const Options& o, const std::string& executable) {
     if (o.stats && done > 0)
         std::fprintf(stderr,
                      "summary: %zu frames of %dx%d in %.2f s (%.2f fps); median per frame: total %.1f ms, animate %.1f, "
-                     "bake %.1f, bvh %.1f, visibility+tiles %.1f, tile passes %.1f\n",
+                     "bake %.1f, bvh %.1f, visibility %.1f, tiles %.1f\n",
                      done, width, height, elapsed, double(done) / elapsed, median(totals), median(animate),
                      median(bake), median(bvh), median(visibility), median(tiles));
     if (g_interrupted) {

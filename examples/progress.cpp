@@ -39,9 +39,11 @@ void Progress::draw(int64_t done) {
     const int filled = int(fraction * kWidth);
     std::string bar(size_t(filled), '#');
     bar.resize(kWidth, ' ');
-    std::fprintf(stderr, "\r%s [%s] %3d%% %lld/%lld %s, %.1fs elapsed, ETA %.1fs ", label_.c_str(),
+    const double rate = elapsed > 0 ? double(done) / elapsed : 0.0;
+    // "\033[K" clears what a longer previous line left to the right.
+    std::fprintf(stderr, "\r%s [%s] %3d%% %lld/%lld %s, %.2f %s/s, %.1fs elapsed, ETA %.1fs\033[K", label_.c_str(),
                  bar.c_str(), int(fraction * 100), static_cast<long long>(done),
-                 static_cast<long long>(total_), unit_.c_str(), elapsed, eta);
+                 static_cast<long long>(total_), unit_.c_str(), rate, unit_.c_str(), elapsed, eta);
     std::fflush(stderr);
 }
 

@@ -1,4 +1,4 @@
-// A one-line progress bar for long runs, redrawn in place with '\r' on stderr when stderr is a
+// A one-line progress bar for long runs (done/total, rate per second, elapsed, ETA), redrawn in place with '\r' on stderr when stderr is a
 // terminal and silent otherwise (logs and pipes get no control characters). No Debian package
 // offers one for C++, so it is this small class.
 #pragma once

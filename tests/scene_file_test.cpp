@@ -204,3 +204,24 @@ TEST(SceneFile, SnakeRestsOnTheGroundAndKeepsItsLength) {
     // It moves: the head is elsewhere a second later.
     EXPECT_GT(glm::distance(snake_spine(s, 0.0f, ground).back(), snake_spine(s, 1.0f, ground).back()), 0.05f);
 }
+
+TEST(SceneFile, MeshObjectsLoadObjFilesRelativeToTheScene) {
+    const fs::path dir = fs::temp_directory_path() / ("tessera_scene_" + std::to_string(::getpid()));
+    fs::create_directories(dir);
+    std::ofstream(dir / "tri.obj") << "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n";
+    std::ofstream(dir / "scene.json") << scene_with(R"([{"type": "mesh", "material": "m", "file": "tri.obj"}])");
+    std::ofstream(dir / "broken.json") << scene_with(R"([{"type": "mesh", "material": "m", "file": "nope.obj"}])");
+    std::vector<std::string> warnings;
+    const AnimatedScene scene = build_scene(load_scene_file(dir / "scene.json", warnings));
+    ASSERT_EQ(scene.scene.objects.size(), 1u);
+    EXPECT_EQ(scene.scene.objects[0].geometry->triangle_count(), 1u);
+    try {
+        build_scene(load_scene_file(dir / "broken.json", warnings));
+        ADD_FAILURE() << "no error";
+    } catch (const SceneFileError& e) {
+        const std::string m = e.what();
+        EXPECT_NE(m.find("broken.json: object 'object 0': cannot read"), std::string::npos) << m;
+        EXPECT_NE(m.find("nope.obj"), std::string::npos) << m;
+    }
+    fs::remove_all(dir);
+}

@@ -278,7 +278,8 @@ Frame FrameRenderer::Impl::render(float time, FrameStats& stats) {
         };
         rasterizer.render(baked.mesh, view_projection, Viewport(width, height), options, visibility, {&pass, 1},
                           &frame.pixels, &stats.raster);
-        stats.visibility_ms = ms_since(t0);
+        stats.tiles_ms = stats.raster.passes_ms;
+        stats.visibility_ms = ms_since(t0) - stats.tiles_ms;
     } else {
         {
             TraceScope trace("primary rays");
@@ -287,6 +288,7 @@ Frame FrameRenderer::Impl::render(float time, FrameStats& stats) {
             stats.visibility_ms = ms_since(t0);
         }
         TraceScope trace("tiles");
+        const auto t0 = Clock::now();
         constexpr int kTile = 64;
         const int tiles_x = (width + kTile - 1) / kTile, tiles_y = (height + kTile - 1) / kTile;
         tbb::parallel_for(tbb::blocked_range2d<int>(0, tiles_y, 1, 0, tiles_x, 1),
@@ -300,6 +302,7 @@ Frame FrameRenderer::Impl::render(float time, FrameStats& stats) {
                                        frame.pixels.data() + at, size_t(width), nullptr});
                 }
         }, tbb::simple_partitioner());
+        stats.tiles_ms = ms_since(t0);
     }
     stats.shadowed_pixels = shadowed.load();
     stats.total_ms = ms_since(t_frame);

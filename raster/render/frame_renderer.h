@@ -34,10 +34,12 @@ RendererKind parse_renderer(std::string_view name);
 ShadowMode parse_shadow_mode(std::string_view name);
 
 struct FrameStats {
-    double animate_ms = 0, bake_ms = 0, bvh_ms = 0, visibility_ms = 0, total_ms = 0;
+    // visibility: the rasterizer's vertex, setup/bin and tile raster stages, or Embree's
+    // primary rays; tiles: the per-tile work after it (shading, shadows, blending, passes).
+    double animate_ms = 0, bake_ms = 0, bvh_ms = 0, visibility_ms = 0, tiles_ms = 0, total_ms = 0;
     uint64_t triangles = 0;
     uint64_t shadowed_pixels = 0;
-    RasterStats raster;  // the raster renderer's own stage times (passes_ms: the tile work)
+    RasterStats raster;  // the raster renderer's own counts and stage times
 };
 
 class FrameRenderer {

@@ -11,6 +11,7 @@
 #include "raster/geometry/box.h"
 #include "raster/geometry/param_surface.h"
 #include "raster/geometry/surfaces.h"
+#include "raster/obj_loader.h"
 #include "raster/scene_file/rd_texture.h"
 #include "raster/scene_file/scene_file_error.h"
 #include "raster/scene_file/snake.h"
@@ -236,6 +237,15 @@ AnimatedScene build_scene(SceneSpec spec) {
                 object.transform = Transform{};  // snakes sample the ground by translation only
                 object.transform.translation = o.transform.translation;
                 grounds[o.name] = ground;
+                break;
+            }
+            case ObjectSpec::Shape::mesh: {
+                const std::filesystem::path path = o.file.is_absolute() ? o.file : spec.file.parent_path() / o.file;
+                try {
+                    object.geometry = std::make_shared<const Mesh>(load_obj(path));
+                } catch (const Error& e) {
+                    throw SceneFileError(spec.file.string() + ": object '" + o.name + "': " + e.what());
+                }
                 break;
             }
             case ObjectSpec::Shape::snake: break;

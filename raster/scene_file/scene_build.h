@@ -16,8 +16,8 @@ struct AnimatedScene {
     void set_time(float time, float aspect);
 };
 
-// Throws SceneFileError for a texture file that cannot be read (naming the scene file and
-// the texture), std::invalid_argument for values the generators reject.
+// Throws SceneFileError for a texture or OBJ file that cannot be read (naming the scene file
+// and the texture or object), std::invalid_argument for values the generators reject.
 AnimatedScene build_scene(SceneSpec spec);
 
 // The camera of `spec` at `time`: keyframes interpolated (Catmull-Rom in time), then the orbit.

@@ -314,9 +314,12 @@ ObjectSpec parse_object(const JsonNode& n, size_t index) {
     } else if (type == "snake") {
         o.shape = ObjectSpec::Shape::snake;
         o.snake = parse_snake(n, o.snake);
+    } else if (type == "mesh") {
+        o.shape = ObjectSpec::Shape::mesh;
+        o.file = n.at("file").as_string();
     } else {
         n.at("type").fail("unknown object type '" + type +
-                          "' (expected sphere, ellipsoid, torus, flag, box, heightfield or snake)");
+                          "' (expected sphere, ellipsoid, torus, flag, box, heightfield, snake or mesh)");
     }
     n.finish();
     return o;

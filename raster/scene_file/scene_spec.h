@@ -102,7 +102,7 @@ struct SnakeSpec {
 };
 
 struct ObjectSpec {
-    enum class Shape { sphere, ellipsoid, torus, flag, box, heightfield, snake };
+    enum class Shape { sphere, ellipsoid, torus, flag, box, heightfield, snake, mesh };
     std::string name;
     Shape shape = Shape::sphere;
     std::string material;
@@ -123,6 +123,8 @@ struct ObjectSpec {
     glm::vec3 box_size{1.0f};
     HeightfieldSpec heightfield;
     SnakeSpec snake;
+    // mesh: a Wavefront OBJ file (relative paths resolve against the scene file)
+    std::filesystem::path file;
 };
 
 // Ray-marched compute passes (seeds/003), run per tile after rasterization in list order.
