@@ -13,7 +13,7 @@ trap 'rm -rf "$dir"' EXIT
 scene=$(dirname "$0")/data/growing_skin.json
 
 # --- Two processes, one folder ---------------------------------------------------------------
-args=(--scene flag --size 96x64 --frames 1:60 --threads 1)
+args=(--scene flag --size 128x96 --frames 1:60 --threads 1)
 "$tessera" render "${args[@]}" --quiet --out "$dir/ref/f_####.png" || fail "reference run exited $?"
 "$tessera" render "${args[@]}" --claim --out "$dir/farm/f_####.png" 2>"$dir/a.log" & a=$!
 "$tessera" render "${args[@]}" --claim --out "$dir/farm/f_####.png" 2>"$dir/b.log" & b=$!
@@ -44,6 +44,16 @@ sargs=(--scene flag --size 48x32 --frames 1:4 --claim --quiet --out "$dir/stale/
 [ -f "$dir/stale/s_0004.png" ] && [ ! -f "$dir/stale/s_0003.png" ] || fail "--claim-timeout 600: $(ls "$dir/stale")"
 [ "$(ls -A "$dir/stale" | tr '\n' ' ')" = ".s_0003.png.claim s_0001.png s_0002.png s_0004.png " ] ||
   fail "left: $(ls -A "$dir/stale")"
+
+# A claimer killed mid-run (SIGKILL: its claim and maybe a temporary stay behind): a run with
+# --claim respects the dead claim, --resume --claim takes it over and completes the set.
+"$tessera" render "${args[@]}" --claim --quiet --out "$dir/kill/f_####.png" & k=$!
+for _ in $(seq 1 400); do [ "$(ls "$dir/kill" 2>/dev/null | wc -l)" -ge 5 ] && break; sleep 0.02; done
+kill -KILL $k; wait $k 2>/dev/null
+"$tessera" render "${args[@]}" --claim --resume --quiet --out "$dir/kill/f_####.png" || fail "resume after SIGKILL exited $?"
+[ "$(ls "$dir/kill" | wc -l)" -eq 60 ] || fail "after SIGKILL and --resume: $(ls "$dir/kill" | wc -l) frames"
+[ "$(ls -A "$dir/kill" | grep -c '^\.')" -eq 0 ] || fail "left after resume: $(ls -A "$dir/kill" | grep '^\.')"
+for f in "$dir"/ref/*.png; do cmp -s "$f" "$dir/kill/$(basename "$f")" || fail "after SIGKILL: $(basename "$f") differs"; done
 
 # --- Growing skin: shards, a late start, checkpoints -------------------------------------------
 render() { "$tessera" render --quiet --scene "$scene" "$@"; }
