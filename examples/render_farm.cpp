@@ -78,8 +78,8 @@ void FarmRun::simulate(int number) {
 }
 
 void FarmRun::published(const std::vector<fs::path>& written) {
-    for (const fs::path& p : written)
-        if (held_.erase(p)) farm::release_claim(p);
+    for (; seen_written_ < written.size(); ++seen_written_)
+        if (held_.erase(written[seen_written_])) farm::release_claim(written[seen_written_]);
 }
 
 }  // namespace tessera::cli

@@ -45,7 +45,9 @@ public:
     bool claim(const std::filesystem::path& frame, int width, int height);
     // The scene's simulated state at frame `number` (restoring checkpoints where they help).
     void simulate(int number);
-    // Releases the claims of frames now on disk.
+    // Releases the claims of frames now on disk. `written`: the writer's list of written
+    // paths so far (FrameWriter::written(), which only grows), read from where the last call
+    // stopped.
     void published(const std::vector<std::filesystem::path>& written);
 
     int held_elsewhere() const { return held_elsewhere_; }
@@ -58,6 +60,7 @@ private:
     farm::SceneSimulation simulation_;
     std::unique_ptr<farm::CheckpointStore> store_;
     std::set<std::filesystem::path> held_;
+    size_t seen_written_ = 0;
     int held_elsewhere_ = 0;
     int frames_simulated_ = 0;
 };
