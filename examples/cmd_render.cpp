@@ -23,7 +23,9 @@
 #include <vector>
 
 #include "examples/command.h"
+#include "examples/distribute.h"
 #include "examples/progress.h"
+#include "examples/render_farm.h"
 #include "raster/error.h"
 #include "raster/image_io.h"
 #include "raster/output/frame.h"
@@ -58,6 +60,7 @@ struct Options {
     float fps = 0.0f;
     int threads = 0;
     bool resume = false, stats = false, quiet = false;
+    FarmOptions farm;  // --claim, --checkpoint-every, --distribute (render_farm.h)
 };
 
 std::string lower_extension(const fs::path& p) {
@@ -150,12 +153,15 @@ int run(const Options& o, const std::string& executable) {
         throw UsageError("--out '" + pattern.text() + "': no image format for that extension (use .png, .exr or .tif)");
     const RendererKind renderer = parse_renderer(o.renderer);
     const ShadowMode shadows = parse_shadow_mode(o.shadows.empty() ? spec.shadows : o.shadows);
+    const DistributeMode mode = parse_distribute(o.farm.distribute);
+    if (mode == DistributeMode::tiles && o.farm.claim)
+        throw UsageError("--claim works on whole frames: not with --distribute tiles");
 
     prepare_output_directory(pattern.path_for(range.first));
     std::vector<int> frames;
     int skipped = 0;
     const std::vector<int> shard_frames = frames_of_shard(range, shard);
-    if (o.resume) {
+    if (o.resume && !o.farm.claim) {  // with --claim, a frame's temporaries go when its claim is won
         std::vector<fs::path> paths;
         for (int f : shard_frames) paths.push_back(pattern.path_for(f));
         remove_stale_temporaries(paths);
@@ -165,6 +171,10 @@ int run(const Options& o, const std::string& executable) {
         else frames.push_back(f);
     }
 
+    const std::unique_ptr<Distribution> distribution = make_distribution(mode, std::move(frames));
+    Distribution& dist = *distribution;
+    const bool rank0 = dist.rank() == 0;
+
     Trace trace;
     if (!o.trace.empty()) trace.activate();
     AnimatedScene scene = [&] {
@@ -173,27 +183,71 @@ int run(const Options& o, const std::string& executable) {
     }();
     FrameRenderer frame_renderer(scene, width, height, renderer, shadows);
     FrameWriter writer(2);
+    FarmRun farm(o.farm, o.resume, scene, scene_name, pattern.path_for(range.first));
+    const auto [rows_first, rows_last] = dist.rows(height);
+    frame_renderer.set_rows(rows_first, rows_last);
+    // Distributed: a failure is handed to rank 0 (which names the rank and the frame) instead
+    // of ending this rank alone. A failed write names the first frame not yet on disk.
+    std::vector<std::pair<fs::path, int>> submitted;
+    const auto failed_write = [&] {
+        const std::vector<fs::path> written = writer.written();
+        for (const auto& [path, f] : submitted)
+            if (std::find(written.begin(), written.end(), path) == written.end()) return f;
+        return submitted.empty() ? -1 : submitted.back().second;
+    };
+    std::string tile_failure;  // tiles: a write failure on rank 0, reported at the next gather
+    int tile_failure_frame = -1;
+    frames = dist.pending();
 
     const bool tty = isatty(fileno(stderr)) != 0 && !o.quiet;
     // On a terminal: a bar redrawn in place ("frame k/n, frames/s, ETA"); otherwise one plain
     // line per frame, which logs and farm schedulers keep.
     std::unique_ptr<Progress> progress;
     if (tty && !frames.empty()) progress = std::make_unique<Progress>(scene_name, int64_t(frames.size()), "frames");
-    if (!o.quiet && skipped > 0) std::fprintf(stderr, "resume: %d complete frame(s) skipped\n", skipped);
+    if (!o.quiet && skipped > 0 && rank0) std::fprintf(stderr, "resume: %d complete frame(s) skipped\n", skipped);
     std::signal(SIGINT, on_interrupt);
     const auto start = std::chrono::steady_clock::now();
     std::vector<double> totals, animate, bake, bvh, visibility, tiles;
     size_t done = 0;
-    for (int f : frames) {
+    while (const std::optional<int> next = dist.next_frame()) {
         if (g_interrupted) break;
+        const int f = *next;
+        const fs::path path = pattern.path_for(f);
+        if (!farm.claim(path, width, height)) continue;
         FrameStats st;
         Frame frame;
-        {
+        std::string failure = std::move(tile_failure);
+        tile_failure.clear();
+        try {
+            farm.simulate(f);
             TraceScope t("frame", "frame", f);
             frame = frame_renderer.render(float(f) / fps, &st);
+        } catch (const std::exception& e) {
+            if (dist.ranks() == 1) throw;
+            if (failure.empty()) failure = e.what();
         }
-        const fs::path path = pattern.path_for(f);
-        writer.submit(path, encode(frame, path));
+        if (mode == DistributeMode::tiles) {
+            const int reported = tile_failure_frame >= 0 && !failure.empty() ? tile_failure_frame : f;
+            tile_failure_frame = -1;
+            if (!dist.gather(reported, frame, failure)) continue;
+        } else if (!failure.empty()) {
+            dist.fail(f, failure);
+            break;
+        }
+        try {
+            writer.submit(path, encode(frame, path));
+            submitted.emplace_back(path, f);
+        } catch (const Error& e) {
+            if (dist.ranks() == 1) throw;
+            if (mode == DistributeMode::tiles) {
+                tile_failure = e.what();
+                tile_failure_frame = failed_write();
+                continue;
+            }
+            dist.fail(failed_write(), e.what());
+            break;
+        }
+        farm.published(writer.written());
         ++done;
         totals.push_back(st.total_ms);
         animate.push_back(st.animate_ms);
@@ -217,9 +271,16 @@ int run(const Options& o, const std::string& executable) {
                          path.string().c_str());
         }
     }
-    writer.finish();
+    try {
+        writer.finish();
+    } catch (const Error& e) {
+        if (dist.ranks() == 1) throw;
+        dist.fail(failed_write(), e.what());
+    }
+    farm.published(writer.written());
     if (progress && !g_interrupted) progress->finish();
     progress.reset();
+    if (!dist.finish()) return 1;  // rank 0 reports the failure (finish() throws there)
     if (!o.trace.empty()) {
         trace.deactivate();
         trace.write(o.trace);
@@ -235,6 +296,9 @@ int run(const Options& o, const std::string& executable) {
         std::fprintf(stderr, "tessera: interrupted: %zu frame(s) written; rerun with --resume to continue\n", done);
         return 130;
     }
+    if (!o.quiet && farm.held_elsewhere() > 0)
+        std::fprintf(stderr, "claim: %d frame(s) claimed by other processes were left to them\n",
+                     farm.held_elsewhere());
     if (!o.quiet && !tty)
         std::fprintf(stderr, "rendered %zu frame(s) in %.2f s\n", done, elapsed);
     return 0;
@@ -268,6 +332,7 @@ TESSERA_COMMAND(20, [](CLI::App& root) -> Run {
     cmd->add_flag("--stats", o->stats, "Print per-stage times per frame and a summary");
     cmd->add_option("--trace", o->trace, "Write a Chrome trace event JSON (Perfetto, chrome://tracing)");
     cmd->add_flag("--quiet", o->quiet, "No progress output");
+    add_farm_options(*cmd, o->farm);
     return [o] { return run(*o, executable_path()); };
 });
 

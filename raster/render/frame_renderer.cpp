@@ -77,6 +77,7 @@ struct FrameRenderer::Impl {
     Rasterizer rasterizer;
     std::optional<rt::RayDevice> device;
     std::vector<procedural::TerrainField> terrains;  // one per terrain pass, built once
+    int rows_first = 0, rows_last = 1 << 30;  // set_rows
 
     Impl(AnimatedScene& s, int w, int h, RendererKind r, ShadowMode sh)
         : scene(s), width(w), height(h), renderer(r), shadows(sh) {
@@ -98,6 +99,11 @@ FrameRenderer::FrameRenderer(AnimatedScene& scene, int width, int height, Render
 }
 
 FrameRenderer::~FrameRenderer() = default;
+
+void FrameRenderer::set_rows(int first, int last) {
+    impl_->rows_first = first;
+    impl_->rows_last = last;
+}
 
 Frame FrameRenderer::render(float time, FrameStats* stats) {
     FrameStats local;
@@ -204,6 +210,7 @@ Frame FrameRenderer::Impl::render(float time, FrameStats& stats) {
 
     VisibilityBuffer visibility;
     const auto tile_work = [&](const TileView& v) {
+        if (v.y1 <= rows_first || v.y0 >= rows_last) return;
         TraceScope trace("tile", "tile", v.x0, v.y0);
         const TileTarget target{v.x0, v.y0, v.x1 - v.x0, v.y1 - v.y0, v.triangle, v.stride, v.colour, v.colour_stride};
         {

@@ -53,6 +53,11 @@ public:
     // The frame at `time` seconds, linear RGBA.
     Frame render(float time, FrameStats* stats = nullptr);
 
+    // Shade only the tiles that meet rows [first, last) (distributed tiles: each rank shades
+    // its band and the bands are gathered); their pixels are exactly those of a whole-frame
+    // render since tiles are independent. Other pixels are left unshaded. Default: all rows.
+    void set_rows(int first, int last);
+
 private:
     struct Impl;
     std::unique_ptr<Impl> impl_;

@@ -7,13 +7,12 @@
 #include <memory>
 
 #include "procedural/normal_map.h"
-#include "procedural/rd_initial.h"
-#include "procedural/rd_presets.h"
 #include "procedural/reaction_diffusion.h"
 #include "raster/geometry/box.h"
 #include "raster/geometry/param_surface.h"
 #include "raster/geometry/surfaces.h"
 #include "raster/obj_loader.h"
+#include "raster/scene_file/rd_texture.h"
 #include "raster/scene_file/scene_file_error.h"
 #include "raster/scene_file/snake.h"
 
@@ -23,20 +22,9 @@ namespace {
 namespace tp = tessera::procedural;
 
 Texture reaction_diffusion_texture(const TextureSpec& t) {
-    const tp::RdPreset* preset = tp::find_rd_preset(t.preset);
-    tp::GrayScott params;
-    params.feed = preset->feed;
-    params.kill = preset->kill;
-    params.anisotropy = t.anisotropy;
-    tp::ReactionDiffusion rd(params, tp::rd_initial_noise(t.size, t.size, t.seed, 12.0f));
+    tp::ReactionDiffusion rd = rd_simulation(t);
     rd.step(t.steps);
-    const std::vector<uint8_t> rgb =
-        t.ramp.empty() ? tp::rd_colorize(rd.state()) : tp::rd_colorize(rd.state(), t.ramp);
-    // rd_colorize quantises the ramp's linear values to bytes; they stay linear here.
-    std::vector<glm::vec4> texels(size_t(t.size) * size_t(t.size));
-    for (size_t i = 0; i < texels.size(); ++i)
-        texels[i] = glm::vec4(rgb[3 * i] / 255.0f, rgb[3 * i + 1] / 255.0f, rgb[3 * i + 2] / 255.0f, 1.0f);
-    return Texture(t.size, t.size, std::move(texels));
+    return rd_texture(rd.state(), t);
 }
 
 Texture relief_normal_texture(const TextureSpec& t) {

@@ -169,6 +169,7 @@ TextureSpec parse_texture(const std::string& name, const JsonNode& n) {
             n.at("preset").fail("unknown preset '" + t.preset + "' (expected " + procedural::rd_preset_names() + ")");
         t.size = at_least(n, "size", t.size, 8, 4096);
         t.steps = at_least(n, "steps", t.steps, 0, 1000000);
+        t.grow_per_frame = at_least(n, "grow_per_frame", t.grow_per_frame, 0, 100000);
         t.seed = uint32_t(at_least(n, "seed", int(t.seed), 0, 1 << 30));
         t.anisotropy = n.number("anisotropy", t.anisotropy);
         if (const auto ramp = n.find("ramp")) {

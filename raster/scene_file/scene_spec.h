@@ -51,6 +51,10 @@ struct TextureSpec {
     std::string preset = "spots";
     int size = 256;  // texels, square
     int steps = 4000;
+    // Growing skin: the texture of frame f is the state after steps + grow_per_frame * f
+    // steps (0: a static skin). Simulated state that depends on earlier frames, which the
+    // render command advances frame by frame and checkpoints (farm/scene_simulation.h).
+    int grow_per_frame = 0;
     uint32_t seed = 1;
     float anisotropy = 0.0f;
     std::vector<procedural::ColorStop> ramp;  // empty: the default snake-skin ramp

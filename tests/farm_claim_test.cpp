@@ -1,0 +1,94 @@
+// Frame claims (raster/farm/frame_claim.h): exclusive creation, respect for live claims,
+// takeover of dead or expired ones only when allowed, and release of only one's own claim.
+#include <gtest/gtest.h>
+#include <unistd.h>
+
+#include <filesystem>
+#include <fstream>
+#include <string>
+
+#include "raster/farm/frame_claim.h"
+
+namespace tessera::farm {
+namespace {
+
+namespace fs = std::filesystem;
+
+struct ClaimTest : ::testing::Test {
+    fs::path dir = fs::temp_directory_path() / ("tessera_claim_" + std::to_string(getpid()));
+    fs::path frame = dir / "f_0001.png";
+    void SetUp() override { fs::create_directories(dir); }
+    void TearDown() override { fs::remove_all(dir); }
+    void write_claim(const std::string& text) { std::ofstream(claim_path(frame)) << text; }
+    std::string read_claim() {
+        std::ifstream in(claim_path(frame));
+        return std::string(std::istreambuf_iterator<char>(in), {});
+    }
+};
+
+TEST(ClaimOwner, TextRoundTripsAndRejectsGarbage) {
+    const ClaimOwner o{"node17", 4242, 1700000000};
+    const auto back = ClaimOwner::parse(o.text());
+    ASSERT_TRUE(back);
+    EXPECT_EQ(back->host, "node17");
+    EXPECT_EQ(back->pid, 4242);
+    EXPECT_EQ(back->time, 1700000000);
+    EXPECT_FALSE(ClaimOwner::parse(""));
+    EXPECT_FALSE(ClaimOwner::parse("node17 notapid 5"));
+    EXPECT_FALSE(ClaimOwner::parse("node17 0 5"));
+}
+
+TEST(ClaimOwner, StaleOnlyWhenAllowedAndDeadOrOld) {
+    const ClaimOwner self = current_owner();
+    ClaimPolicy respect;
+    ClaimPolicy take{true, 0.0};
+    ClaimPolicy take_old{true, 60.0};
+    const ClaimOwner alive{self.host, int64_t(getppid()), self.time};
+    const ClaimOwner elsewhere{"some-other-host", 1, self.time - 3600};
+    EXPECT_FALSE(claim_is_stale(alive, self, take));
+    EXPECT_FALSE(claim_is_stale(elsewhere, self, take));  // another host's pid says nothing here
+    EXPECT_TRUE(claim_is_stale(elsewhere, self, take_old));
+    EXPECT_FALSE(claim_is_stale(elsewhere, self, respect));
+}
+
+TEST_F(ClaimTest, FirstClaimWinsSecondIsHeld) {
+    EXPECT_EQ(try_claim(frame, {}), ClaimResult::claimed);
+    EXPECT_EQ(claim_path(frame), dir / ".f_0001.png.claim");
+    const auto owner = ClaimOwner::parse(read_claim());
+    ASSERT_TRUE(owner);
+    EXPECT_EQ(owner->pid, getpid());
+    EXPECT_EQ(try_claim(frame, {true, 0.0}), ClaimResult::held);  // ours and alive: not stale
+    release_claim(frame);
+    EXPECT_FALSE(fs::exists(claim_path(frame)));
+    EXPECT_EQ(try_claim(frame, {}), ClaimResult::claimed);
+}
+
+TEST_F(ClaimTest, ReleaseLeavesOthersClaims) {
+    write_claim("some-other-host 77 1\n");
+    release_claim(frame);
+    EXPECT_TRUE(fs::exists(claim_path(frame)));
+}
+
+TEST_F(ClaimTest, ExpiredClaimIsTakenOverOnlyWithPolicy) {
+    write_claim("some-other-host 77 1\n");  // made in 1970
+    EXPECT_EQ(try_claim(frame, {false, 60.0}), ClaimResult::held);
+    EXPECT_EQ(try_claim(frame, {true, 0.0}), ClaimResult::held);  // age alone needs a timeout
+    EXPECT_EQ(try_claim(frame, {true, 60.0}), ClaimResult::taken_over);
+    EXPECT_EQ(ClaimOwner::parse(read_claim())->pid, getpid());
+    // No renamed leftovers of the stale claim.
+    int files = 0;
+    for (const auto& e : fs::directory_iterator(dir)) files += e.is_regular_file();
+    EXPECT_EQ(files, 1);
+}
+
+TEST_F(ClaimTest, EmptyClaimBeingWrittenIsHeld) {
+    write_claim("");
+    EXPECT_EQ(try_claim(frame, {true, 1.0}), ClaimResult::held);
+}
+
+TEST_F(ClaimTest, UnwritableFolderThrows) {
+    EXPECT_THROW(try_claim(dir / "missing" / "f.png", {}), std::runtime_error);
+}
+
+}  // namespace
+}  // namespace tessera::farm
