@@ -27,6 +27,7 @@
 #include "examples/progress.h"
 #include "examples/render_farm.h"
 #include "raster/error.h"
+#include "raster/farm/frame_claim.h"
 #include "raster/image_io.h"
 #include "raster/output/frame.h"
 #include "raster/output/frame_sequence.h"
@@ -167,8 +168,17 @@ int run(const Options& o, const std::string& executable) {
         remove_stale_temporaries(paths);
     }
     for (int f : shard_frames) {
-        if (o.resume && image_is_complete(pattern.path_for(f), width, height)) ++skipped;
-        else frames.push_back(f);
+        const fs::path path = pattern.path_for(f);
+        if (!(o.resume && image_is_complete(path, width, height))) {
+            frames.push_back(f);
+            continue;
+        }
+        ++skipped;
+        // A process killed between publishing a frame and removing its claim leaves the claim
+        // behind: break it by the usual protocol (stale owners only) and hand it straight back.
+        if (o.farm.claim &&
+            farm::try_claim(path, {true, o.farm.claim_timeout}) != farm::ClaimResult::held)
+            farm::release_claim(path);
     }
 
     const std::unique_ptr<Distribution> distribution = make_distribution(mode, std::move(frames));
