@@ -87,9 +87,11 @@ FloatImage read_image(const fs::path& path) {
         throw Error("cannot read " + describe(path) + ": " + (why.empty() ? "not an image" : why));
     }
     const OIIO::ImageSpec& spec = in->spec();
-    // Guard against absurd headers before allocating: 2^31 floats is 8 GiB.
+    // Guard against absurd headers before allocating: a 200-byte file can claim gigapixels
+    // (found by fuzz_image), and the float buffer is allocated before decoding starts. 2^28
+    // floats (1 GiB) still holds an 8192x8192 RGBA texture.
     const uint64_t count = uint64_t(spec.width) * uint64_t(spec.height) * uint64_t(spec.nchannels);
-    if (spec.width <= 0 || spec.height <= 0 || spec.nchannels <= 0 || count > (uint64_t(1) << 31))
+    if (spec.width <= 0 || spec.height <= 0 || spec.nchannels <= 0 || count > (uint64_t(1) << 28))
         throw Error("cannot read " + describe(path) + ": unsupported image size " +
                     std::to_string(spec.width) + "x" + std::to_string(spec.height));
     FloatImage image{spec.width, spec.height, spec.nchannels, std::vector<float>(count)};
