@@ -6,6 +6,7 @@
 PRESET ?= release
 JOBS   ?= $(shell nproc)
 FUZZ_SECONDS ?= 15
+FUZZ_SEED ?= 0
 # Known failures of the sanitize build (RelWithDebInfo, -O2), both exact float comparisons
 # that hold at -O3 and break where gcc contracts a*b+c into FMAs differently (C++ defaults to
 # -ffp-contract=fast): the tile rasterizer against its scalar reference on a sphere, and a
@@ -61,7 +62,7 @@ fuzz: deps
 	cmake --build --preset fuzz -j $(JOBS)
 
 fuzz-run: fuzz
-	bash scripts/fuzz.sh $(FUZZ_SECONDS)
+	FUZZ_SEED=$(FUZZ_SEED) bash scripts/fuzz.sh $(FUZZ_SECONDS)
 
 clean:
 	rm -rf build build-debug build-sanitize build-portable build-tsan build-fuzz
