@@ -27,6 +27,16 @@ void ImplicitField::sample_batch(size_t n, const float* x, const float* y, const
     }
 }
 
+void ImplicitField::value_batch_by_sampling(size_t n, const float* x, const float* y,
+                                            const float* z, float* value) const {
+    constexpr size_t kBlock = 256;
+    float gx[kBlock], gy[kBlock], gz[kBlock];
+    for (size_t start = 0; start < n; start += kBlock) {
+        const size_t count = n - start < kBlock ? n - start : kBlock;
+        sample_batch(count, x + start, y + start, z + start, value + start, gx, gy, gz);
+    }
+}
+
 // --- SineNoiseField -------------------------------------------------------------------------
 
 SineNoiseField::SineNoiseField() {
@@ -100,13 +110,7 @@ TerrainField::TerrainField(const TerrainParams& params) : p_(params) {
 
 void TerrainField::value_batch(size_t n, const float* x, const float* y, const float* z,
                                float* value) const {
-    // The fBm relief has a vectorised batch; it needs gradient storage, so go in blocks.
-    constexpr size_t kBlock = 256;
-    float gx[kBlock], gy[kBlock], gz[kBlock];
-    for (size_t start = 0; start < n; start += kBlock) {
-        const size_t count = n - start < kBlock ? n - start : kBlock;
-        sample_batch(count, x + start, y + start, z + start, value + start, gx, gy, gz);
-    }
+    value_batch_by_sampling(n, x, y, z, value);  // fBm relief: vectorised with gradients
 }
 
 void TerrainField::sample_batch(size_t n, const float* __restrict x, const float* __restrict y,
@@ -144,12 +148,7 @@ NoiseVolumeField::NoiseVolumeField(const VolumeParams& params) : p_(params) {
 
 void NoiseVolumeField::value_batch(size_t n, const float* x, const float* y, const float* z,
                                    float* value) const {
-    constexpr size_t kBlock = 256;
-    float gx[kBlock], gy[kBlock], gz[kBlock];
-    for (size_t start = 0; start < n; start += kBlock) {
-        const size_t count = n - start < kBlock ? n - start : kBlock;
-        sample_batch(count, x + start, y + start, z + start, value + start, gx, gy, gz);
-    }
+    value_batch_by_sampling(n, x, y, z, value);
 }
 
 void NoiseVolumeField::sample_batch(size_t n, const float* __restrict x, const float* __restrict y,

@@ -38,6 +38,12 @@ public:
                              float* value) const;
     virtual void sample_batch(size_t n, const float* x, const float* y, const float* z,
                               float* value, float* gx, float* gy, float* gz) const;
+
+protected:
+    // value_batch for fields whose only vectorised loop also computes the gradient: runs
+    // sample_batch in blocks with scratch gradient storage.
+    void value_batch_by_sampling(size_t n, const float* x, const float* y, const float* z,
+                                 float* value) const;
 };
 
 // The seed's 3-D noise (seeds/003, "Egyszerű zaj"): 16 sines with wave vectors from the
