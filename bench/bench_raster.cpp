@@ -170,10 +170,9 @@ void BM_Setup(benchmark::State& state) {
 }
 BENCHMARK(BM_Setup)->ArgName("ktris")->Arg(100)->Arg(1000)->Unit(benchmark::kMillisecond)->UseRealTime();
 
-// Binning alone, on the setups of one frame.
-void BM_Binning(benchmark::State& state) {
-    const size_t triangles = size_t(state.range(0)) * 1000;
-    const int tile = int(state.range(1));
+// One chunk holding the back-face-culled setups of the 1080p sphere frame: the input of the
+// binning and tile-stage benchmarks, which measure those stages alone.
+ChunkBins sphere_setups(size_t triangles) {
     const Mesh& mesh = sphere_mesh(triangles);
     const Viewport viewport(1920, 1080);
     ClipVertices vertices;
@@ -183,6 +182,14 @@ void BM_Binning(benchmark::State& state) {
     RasterOptions options;
     options.cull = CullMode::back;
     run_primitive_stage(mesh, vertices, viewport, options, 0, uint32_t(mesh.triangle_count()), chunk.setups, stats);
+    return chunk;
+}
+
+// Binning alone, on the setups of one frame.
+void BM_Binning(benchmark::State& state) {
+    const size_t triangles = size_t(state.range(0)) * 1000;
+    const int tile = int(state.range(1));
+    ChunkBins chunk = sphere_setups(triangles);
     const TileGrid grid(1920, 1080, tile);
     std::vector<uint32_t> scratch;
     for (auto _ : state) {
@@ -202,15 +209,7 @@ BENCHMARK(BM_Binning)
 void BM_TileRaster(benchmark::State& state) {
     const size_t triangles = size_t(state.range(0)) * 1000;
     const int tile = int(state.range(1));
-    const Mesh& mesh = sphere_mesh(triangles);
-    const Viewport viewport(1920, 1080);
-    ClipVertices vertices;
-    run_vertex_stage(mesh, sphere_camera(1920, 1080), viewport, vertices);
-    ChunkBins chunk;
-    RasterStats stats;
-    RasterOptions options;
-    options.cull = CullMode::back;
-    run_primitive_stage(mesh, vertices, viewport, options, 0, uint32_t(mesh.triangle_count()), chunk.setups, stats);
+    ChunkBins chunk = sphere_setups(triangles);
     const TileGrid grid(1920, 1080, tile);
     std::vector<uint32_t> scratch;
     chunk.bin(grid, scratch);
