@@ -38,17 +38,25 @@ FrameShading::FrameShading(const BakedScene& baked, const Scene& scene, RenderSt
 
     // Pixel rays: the inverse of the seed's V and P restricted to directions. A camera-space
     // direction (x_ndc / P00, y_ndc / P11, -1) goes to world space through the rows u, v, w
-    // of the view matrix.
-    const glm::mat4 view = state_.camera.view();
-    const glm::mat4 projection = state_.camera.projection();
+    // of the view matrix. The NDC are the whole frame's: a camera window (camera.h) maps the
+    // window's NDC affinely onto them, which folds into the three vectors.
+    const Camera& camera = state_.camera;
+    const glm::mat4 view = camera.view();
+    const glm::mat4 lens = camera.lens_projection();
     const glm::vec3 u(view[0][0], view[1][0], view[2][0]);
     const glm::vec3 v(view[0][1], view[1][1], view[2][1]);
     const glm::vec3 w(view[0][2], view[1][2], view[2][2]);
-    ray_x_ = u / projection[0][0];
-    ray_y_ = v / projection[1][1];
+    ray_x_ = u / lens[0][0];
+    ray_y_ = v / lens[1][1];
     ray_z_ = -w;
+    if (!camera.window.whole()) {
+        const glm::vec2 centre = camera.window.frame_ndc(glm::vec2(0.0f));
+        ray_z_ += ray_x_ * centre.x + ray_y_ * centre.y;
+        ray_x_ *= 0.5f * (camera.window.x_high - camera.window.x_low);
+        ray_y_ *= 0.5f * (camera.window.y_high - camera.window.y_low);
+    }
 
-    const glm::mat4 vp = projection * view;
+    const glm::mat4 vp = camera.projection() * view;
     clip_.resize(mesh.vertex_count());
     bool any_gouraud = false;
     for (const Material& m : scene_.materials) any_gouraud |= m.model == ShadingModel::gouraud;
