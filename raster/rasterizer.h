@@ -59,6 +59,16 @@ struct RasterStats {
     uint64_t bin_entries = 0;   // (tile, triangle) pairs
     uint64_t visible_pixels = 0;
     double vertex_ms = 0, setup_bin_ms = 0, raster_ms = 0, passes_ms = 0, total_ms = 0;
+
+    // Sums of the counts and times of several renders (the regions of one large frame).
+    RasterStats& operator+=(const RasterStats& r) {
+        triangles += r.triangles, invalid += r.invalid, outside += r.outside, clipped += r.clipped;
+        zero_area += r.zero_area, culled_face += r.culled_face, no_samples += r.no_samples;
+        setups += r.setups, bin_entries += r.bin_entries, visible_pixels += r.visible_pixels;
+        vertex_ms += r.vertex_ms, setup_bin_ms += r.setup_bin_ms, raster_ms += r.raster_ms;
+        passes_ms += r.passes_ms, total_ms += r.total_ms;
+        return *this;
+    }
 };
 
 class Rasterizer {

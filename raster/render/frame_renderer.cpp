@@ -3,6 +3,7 @@
 #include <tbb/blocked_range2d.h>
 #include <tbb/parallel_for.h>
 
+#include <algorithm>
 #include <chrono>
 #include <optional>
 #include <stdexcept>
@@ -69,6 +70,25 @@ struct TileView {
 
 }  // namespace
 
+// What every region of one frame shares, built once per frame: the animated scene baked, the
+// BVH, the lights' shadow tests, the metaballs at this time.
+struct FrameState {
+    float time = 0.0f;
+    BakedScene baked;
+    std::optional<rt::RayScene> rays;
+    std::vector<glm::vec3> light_targets;
+    std::vector<shadow::ShadowMap> maps;
+    shadow::LightTest light_test;
+    std::vector<march::MetaballField> metaballs;
+    std::vector<uint8_t> transparent;  // per triangle; empty when no material is transparent
+};
+
+// A part of the frame rendered in one pass: the whole frame, or a region of a band.
+struct Region {
+    Camera camera;  // narrowed to the region (camera.h region())
+    int width, height;
+};
+
 struct FrameRenderer::Impl {
     AnimatedScene& scene;
     int width, height;
@@ -85,7 +105,11 @@ struct FrameRenderer::Impl {
             if (p.kind == PassSpec::Kind::terrain) terrains.emplace_back(p.terrain);
     }
 
-    Frame render(float time, FrameStats& stats);
+    void prepare(float time, FrameState& frame, FrameStats& stats);
+    // Renders `region` into `colour` (resized to region.width x region.height), shading only
+    // the tiles that meet rows [rows_from, rows_to) of the region.
+    void render_region(const FrameState& frame, const Region& region, std::vector<glm::vec4>& colour,
+                       int rows_from, int rows_to, FrameStats& stats);
 };
 
 FrameRenderer::FrameRenderer(AnimatedScene& scene, int width, int height, RendererKind renderer,
@@ -106,51 +130,122 @@ void FrameRenderer::set_rows(int first, int last) {
 }
 
 Frame FrameRenderer::render(float time, FrameStats* stats) {
+    Impl& im = *impl_;
+    if (needs_bands(im.width, im.height))
+        throw std::invalid_argument("a " + std::to_string(im.width) + "x" + std::to_string(im.height) +
+                                    " frame is rendered in bands (render_bands)");
     FrameStats local;
-    Frame frame = impl_->render(time, stats ? *stats : local);
+    FrameStats& st = stats ? *stats : local;
+    const auto t_frame = Clock::now();
+    st = FrameStats{};
+    FrameState state;
+    im.prepare(time, state, st);
+    Frame frame(im.width, im.height);
+    im.render_region(state, Region{im.scene.scene.camera, im.width, im.height}, frame.pixels, im.rows_first,
+                     im.rows_last, st);
+    st.total_ms = ms_since(t_frame);
     return frame;
 }
 
-Frame FrameRenderer::Impl::render(float time, FrameStats& stats) {
+void FrameRenderer::render_bands(float time, const BandLayout& layout, const BandFilter& mine,
+                                 const BandSink& deliver, FrameStats* stats) {
+    Impl& im = *impl_;
+    if (layout.width != im.width || layout.height != im.height || layout.band_rows <= 0 ||
+        layout.region_width <= 0 || layout.region_width > kMaxViewport || layout.band_rows > kMaxViewport)
+        throw std::invalid_argument("render_bands: the band layout does not fit the renderer's " +
+                                    std::to_string(im.width) + "x" + std::to_string(im.height) + " frame");
+    FrameStats local;
+    FrameStats& st = stats ? *stats : local;
     const auto t_frame = Clock::now();
-    stats = FrameStats{};
+    st = FrameStats{};
+    FrameState state;
+    im.prepare(time, state, st);
+    const Camera& camera = im.scene.scene.camera;
+    std::vector<glm::vec4> region;
+    for (int b = 0; b < layout.bands(); ++b) {
+        if (!mine(b)) continue;
+        const auto [y0, y1] = layout.rows(b);
+        const int rows = y1 - y0;
+        Frame band(layout.width, rows);
+        for (int x0 = 0; x0 < layout.width; x0 += layout.region_width) {
+            const int w = std::min(layout.region_width, layout.width - x0);
+            TraceScope trace("region", "region", x0, y0);
+            im.render_region(state, Region{camera.region(im.width, im.height, x0, y0, w, rows), w, rows}, region,
+                             0, rows, st);
+            for (int y = 0; y < rows; ++y)
+                std::copy_n(region.begin() + ptrdiff_t(y) * w, w, band.pixels.begin() + ptrdiff_t(y) * layout.width + x0);
+        }
+        TraceScope trace("deliver band", "band", b);
+        deliver(b, band);
+    }
+    st.total_ms = ms_since(t_frame);
+}
+
+void FrameRenderer::Impl::prepare(float time, FrameState& frame, FrameStats& stats) {
     Scene& s = scene.scene;
+    frame.time = time;
     {
         TraceScope trace("animate");
         const auto t0 = Clock::now();
         scene.set_time(time, float(width) / float(height));
         stats.animate_ms = ms_since(t0);
     }
-    BakedScene baked;
     {
         TraceScope trace("bake");
         const auto t0 = Clock::now();
-        baked = bake(s);
-        rt::reserve_ray_padding(baked.mesh);
+        frame.baked = bake(s);
+        rt::reserve_ray_padding(frame.baked.mesh);
         stats.bake_ms = ms_since(t0);
     }
-    stats.triangles = baked.mesh.triangle_count();
-    const glm::mat4 view_projection = s.camera.view_projection();
-
-    std::optional<rt::RayScene> rays;
+    stats.triangles = frame.baked.mesh.triangle_count();
     if (device) {
         TraceScope trace("bvh");
         const auto t0 = Clock::now();
-        rays.emplace(*device, baked.mesh, rt::BvhUpdate::rebuild);
+        frame.rays.emplace(*device, frame.baked.mesh, rt::BvhUpdate::rebuild);
         stats.bvh_ms = ms_since(t0);
     }
+    if (shadows != ShadowMode::none && !s.lights.empty()) {
+        for (const Light& l : s.lights) frame.light_targets.push_back(shadow_target(l));
+        if (shadows == ShadowMode::rays) {
+            frame.light_test = rt::shadow_ray_test(*frame.rays);
+        } else {
+            TraceScope map_trace("shadow maps");
+            frame.maps.reserve(s.lights.size());
+            for (const glm::vec3& light : frame.light_targets)
+                frame.maps.emplace_back(rasterizer, frame.baked.mesh, light);
+            frame.light_test = shadow::shadow_map_test(frame.maps);
+        }
+    }
+    for (const PassSpec& p : scene.spec.passes)
+        if (p.kind == PassSpec::Kind::metaballs) {
+            std::vector<march::Metaball> balls = march::orbiting_metaballs(p.count, time, p.ball_radius);
+            for (march::Metaball& b : balls) b.centre = b.centre * p.orbit_scale + p.offset;
+            frame.metaballs.emplace_back(balls, p.style);
+        }
+    bool any_transparent = false;
+    for (const Material& m : s.materials) any_transparent |= m.transparent();
+    if (any_transparent && renderer == RendererKind::raster) {
+        const std::vector<uint32_t>& material = frame.baked.triangle_material;
+        frame.transparent.resize(material.size());
+        for (size_t t = 0; t < material.size(); ++t) frame.transparent[t] = s.materials[material[t]].transparent();
+    }
+}
 
-    const RenderState state{s.camera, width, height, s.lights};
+void FrameRenderer::Impl::render_region(const FrameState& frame, const Region& region,
+                                        std::vector<glm::vec4>& colour, int rows_from, int rows_to,
+                                        FrameStats& stats) {
+    const Scene& s = scene.scene;
+    const BakedScene& baked = frame.baked;
+    const int w = region.width, h = region.height;
+    const glm::mat4 view_projection = region.camera.view_projection();
+    const RenderState state{region.camera, w, h, s.lights};
     const FrameShading shading(baked, s, state);
 
     // Shadows: one shading per subset of lit lights (bit l set: light l reaches the point).
-    const size_t light_count = s.lights.size();
+    const size_t light_count = frame.light_targets.size();
     const uint32_t all_lit = (1u << light_count) - 1u;
     std::vector<std::unique_ptr<FrameShading>> subset_shading;
-    std::vector<glm::vec3> light_targets;
-    std::vector<shadow::ShadowMap> maps;
-    shadow::LightTest light_test;
-    if (shadows != ShadowMode::none && light_count > 0) {
+    if (light_count > 0) {
         TraceScope trace("shadow setup");
         subset_shading.resize(all_lit);
         tbb::parallel_for(uint32_t(0), all_lit, [&](uint32_t mask) {
@@ -159,28 +254,12 @@ Frame FrameRenderer::Impl::render(float time, FrameStats& stats) {
                 if (!(mask & (1u << l))) dimmed.lights[l].Le = glm::vec3(0.0f);
             subset_shading[mask] = std::make_unique<FrameShading>(baked, s, std::move(dimmed));
         });
-        for (const Light& l : s.lights) light_targets.push_back(shadow_target(l));
-        if (shadows == ShadowMode::rays) {
-            light_test = rt::shadow_ray_test(*rays);
-        } else {
-            TraceScope map_trace("shadow maps");
-            maps.reserve(light_count);
-            for (const glm::vec3& light : light_targets) maps.emplace_back(rasterizer, baked.mesh, light);
-            light_test = shadow::shadow_map_test(maps);
-        }
     }
-    const rt::PixelRays pixel_rays(view_projection, width, height);
+    const rt::PixelRays pixel_rays(view_projection, w, h);
     std::atomic<uint64_t> shadowed{0};
 
-    // The scene's compute passes for this frame.
-    const march::RayGenerator march_rays(s.camera, width, height);
-    std::vector<march::MetaballField> metaballs;
-    for (const PassSpec& p : scene.spec.passes)
-        if (p.kind == PassSpec::Kind::metaballs) {
-            std::vector<march::Metaball> balls = march::orbiting_metaballs(p.count, time, p.ball_radius);
-            for (march::Metaball& b : balls) b.centre = b.centre * p.orbit_scale + p.offset;
-            metaballs.emplace_back(balls, p.style);
-        }
+    // The scene's compute passes, seen through this region's camera.
+    const march::RayGenerator march_rays(region.camera, w, h);
     std::vector<std::function<void(const march::PassTarget&)>> compute_passes;
     {
         size_t terrain_i = 0, metaball_i = 0;
@@ -195,7 +274,8 @@ Frame FrameRenderer::Impl::render(float time, FrameStats& stats) {
                 }
                 case PassSpec::Kind::metaballs: {
                     auto pass = std::make_shared<march::SurfacePass<march::MetaballSurface>>(
-                        march::MetaballSurface{metaballs[metaball_i++]}, march_rays, p.settings, look, s.background);
+                        march::MetaballSurface{frame.metaballs[metaball_i++]}, march_rays, p.settings, look,
+                        s.background);
                     compute_passes.push_back([pass](const march::PassTarget& t) { pass->run(t); });
                     break;
                 }
@@ -210,7 +290,7 @@ Frame FrameRenderer::Impl::render(float time, FrameStats& stats) {
 
     VisibilityBuffer visibility;
     const auto tile_work = [&](const TileView& v) {
-        if (v.y1 <= rows_first || v.y0 >= rows_last) return;
+        if (v.y1 <= rows_from || v.y0 >= rows_to) return;
         TraceScope trace("tile", "tile", v.x0, v.y0);
         const TileTarget target{v.x0, v.y0, v.x1 - v.x0, v.y1 - v.y0, v.triangle, v.stride, v.colour, v.colour_stride};
         {
@@ -223,14 +303,14 @@ Frame FrameRenderer::Impl::render(float time, FrameStats& stats) {
             shadow::gather_surface_points(visibility, baked.mesh, pixel_rays, rt::ImageTile{v.x0, v.y0, v.x1, v.y1},
                                           points);
             std::vector<uint8_t> lit(points.size(), 0), facing(points.size(), 0);
-            shadow::facing_lights(points, light_targets, facing);
-            light_test(points, light_targets, lit);
+            shadow::facing_lights(points, frame.light_targets, facing);
+            frame.light_test(points, frame.light_targets, lit);
             std::vector<std::vector<CoveredPixel>> groups(all_lit);
             for (size_t i = 0; i < points.size(); ++i) {
                 const uint32_t mask = (lit[i] | ~facing[i]) & all_lit;
                 if (mask == all_lit) continue;
                 const uint32_t p = points.pixel[i];
-                const int x = int(p % uint32_t(width)), y = int(p / uint32_t(width));
+                const int x = int(p % uint32_t(w)), y = int(p / uint32_t(w));
                 groups[mask].push_back({x, y, visibility.triangle[p]});
             }
             std::vector<glm::vec4> colours;
@@ -259,54 +339,47 @@ Frame FrameRenderer::Impl::render(float time, FrameStats& stats) {
         }
     };
 
-    Frame frame(width, height);
     if (renderer == RendererKind::raster) {
         TraceScope trace("raster");
         const auto t0 = Clock::now();
-        std::vector<uint8_t> transparent;
-        bool any_transparent = false;
-        for (const Material& m : s.materials) any_transparent |= m.transparent();
-        if (any_transparent) {
-            transparent.resize(baked.mesh.triangle_count());
-            for (size_t t = 0; t < transparent.size(); ++t) transparent[t] = shading.transparent(uint32_t(t)) ? 1 : 0;
-        }
         RasterOptions options;
-        options.transparent = transparent;
+        options.transparent = frame.transparent;
         const TilePass pass = [&](const TileContext& c) {
             tile_work(TileView{c.rect.x0, c.rect.y0, c.rect.x1, c.rect.y1, c.triangle, c.depth, c.stride, c.color,
                                c.color_stride, &c});
         };
-        rasterizer.render(baked.mesh, view_projection, Viewport(width, height), options, visibility, {&pass, 1},
-                          &frame.pixels, &stats.raster);
-        stats.tiles_ms = stats.raster.passes_ms;
-        stats.visibility_ms = ms_since(t0) - stats.tiles_ms;
+        RasterStats raster;
+        rasterizer.render(baked.mesh, view_projection, Viewport(w, h), options, visibility, {&pass, 1}, &colour,
+                          &raster);
+        stats.raster += raster;
+        stats.tiles_ms += raster.passes_ms;
+        stats.visibility_ms += ms_since(t0) - raster.passes_ms;
     } else {
         {
             TraceScope trace("primary rays");
             const auto t0 = Clock::now();
-            rt::cast_primary_rays(*rays, view_projection, width, height, visibility);
-            stats.visibility_ms = ms_since(t0);
+            rt::cast_primary_rays(*frame.rays, view_projection, w, h, visibility);
+            stats.visibility_ms += ms_since(t0);
         }
         TraceScope trace("tiles");
         const auto t0 = Clock::now();
+        colour.resize(size_t(w) * size_t(h));
         constexpr int kTile = 64;
-        const int tiles_x = (width + kTile - 1) / kTile, tiles_y = (height + kTile - 1) / kTile;
+        const int tiles_x = (w + kTile - 1) / kTile, tiles_y = (h + kTile - 1) / kTile;
         tbb::parallel_for(tbb::blocked_range2d<int>(0, tiles_y, 1, 0, tiles_x, 1),
                           [&](const tbb::blocked_range2d<int>& r) {
             for (int ty = r.rows().begin(); ty != r.rows().end(); ++ty)
                 for (int tx = r.cols().begin(); tx != r.cols().end(); ++tx) {
                     const int x0 = tx * kTile, y0 = ty * kTile;
-                    const size_t at = size_t(y0) * size_t(width) + size_t(x0);
-                    tile_work(TileView{x0, y0, std::min(width, x0 + kTile), std::min(height, y0 + kTile),
-                                       visibility.triangle.data() + at, visibility.depth.data() + at, size_t(width),
-                                       frame.pixels.data() + at, size_t(width), nullptr});
+                    const size_t at = size_t(y0) * size_t(w) + size_t(x0);
+                    tile_work(TileView{x0, y0, std::min(w, x0 + kTile), std::min(h, y0 + kTile),
+                                       visibility.triangle.data() + at, visibility.depth.data() + at, size_t(w),
+                                       colour.data() + at, size_t(w), nullptr});
                 }
         }, tbb::simple_partitioner());
-        stats.tiles_ms = ms_since(t0);
+        stats.tiles_ms += ms_since(t0);
     }
-    stats.shadowed_pixels = shadowed.load();
-    stats.total_ms = ms_since(t_frame);
-    return frame;
+    stats.shadowed_pixels += shadowed.load();
 }
 
 }  // namespace tessera

@@ -14,14 +14,22 @@
 // shadowed and lit pixels come from the same shading kernel. Points facing away from a light
 // keep the kernel's smooth N.L falloff (no stair-stepped terminator on coarse meshes).
 //
+// Frames larger than one pass (band_layout.h) are rendered band by band: what the frame
+// shares (the animated scene's bake, the BVH, the shadow maps) is built once, then each band's
+// regions go through the same visibility and tile stages with the camera narrowed to them
+// (camera.h region()), and each finished band is handed on (to a streaming file, to MPI rank
+// 0) before the next one starts, so memory holds one band, not the frame.
+//
 // Deterministic: tiles never share writes and every pixel depends only on its own inputs.
 #pragma once
 #include <cstdint>
+#include <functional>
 #include <memory>
 #include <string_view>
 
 #include "raster/output/frame.h"
 #include "raster/rasterizer.h"
+#include "raster/render/band_layout.h"
 #include "raster/scene_file/scene_build.h"
 
 namespace tessera {
@@ -50,12 +58,22 @@ public:
     FrameRenderer(const FrameRenderer&) = delete;
     FrameRenderer& operator=(const FrameRenderer&) = delete;
 
-    // The frame at `time` seconds, linear RGBA.
+    // The frame at `time` seconds, linear RGBA. Throws std::invalid_argument for a frame that
+    // needs bands (needs_bands()).
     Frame render(float time, FrameStats* stats = nullptr);
 
-    // Shade only the tiles that meet rows [first, last) (distributed tiles: each rank shades
-    // its band and the bands are gathered); their pixels are exactly those of a whole-frame
-    // render since tiles are independent. Other pixels are left unshaded. Default: all rows.
+    // The frame at `time` seconds as the bands of `layout` (whose size must be the
+    // renderer's): for each band b with mine(b), in increasing b, calls deliver(b, pixels)
+    // with the band's layout.width x rows(b) pixels. Stats sum over the rendered regions.
+    using BandFilter = std::function<bool(int band)>;
+    using BandSink = std::function<void(int band, const Frame& pixels)>;
+    void render_bands(float time, const BandLayout& layout, const BandFilter& mine, const BandSink& deliver,
+                      FrameStats* stats = nullptr);
+
+    // Shade only the tiles that meet rows [first, last) of render()'s frame (distributed
+    // tiles: each rank shades its band and the bands are gathered); their pixels are exactly
+    // those of a whole-frame render since tiles are independent. Other pixels are left
+    // unshaded. Default: all rows. render_bands() ignores it (its caller picks bands).
     void set_rows(int first, int last);
 
 private:
