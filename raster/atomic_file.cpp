@@ -18,10 +18,6 @@ namespace fs = std::filesystem;
 
 namespace {
 
-[[noreturn]] void fail(const fs::path& path, const std::string& why) {
-    throw Error("cannot write '" + path.string() + "': " + why);
-}
-
 // Unique per process and call, so concurrent writers (threads, or machines sharing a folder
 // over NFS) never collide on a temporary. The leading dot keeps it out of frame globs.
 fs::path temporary_beside(const fs::path& target) {
@@ -42,7 +38,10 @@ fs::path temporary_beside(const fs::path& target) {
 // (A pid names a process on this machine only; two machines writing the same file in a
 // shared folder at once is already a conflict, whatever this does.)
 void remove_stale_temporaries(const fs::path& target, const fs::path& parent) {
-    const std::string prefix = "." + target.filename().string() + ".tmp";
+    // Built by appending: GCC 12 warns falsely (-Wrestrict) on "." + string once inlined here.
+    std::string prefix = ".";
+    prefix += target.filename().string();
+    prefix += ".tmp";
     std::error_code ec;
     for (fs::directory_iterator it(parent, ec), end; !ec && it != end; it.increment(ec)) {
         const std::string name = it->path().filename().string();
@@ -58,55 +57,86 @@ void remove_stale_temporaries(const fs::path& target, const fs::path& parent) {
     }
 }
 
-// Writes all bytes to fd; returns 0 or the errno of the first failure.
-int write_all(int fd, std::span<const std::byte> bytes) {
-    size_t done = 0;
-    while (done < bytes.size()) {
-        const ssize_t n = ::write(fd, bytes.data() + done, bytes.size() - done);
-        if (n < 0) {
-            if (errno == EINTR) continue;
-            return errno;
-        }
-        if (n == 0) return EIO;
-        done += size_t(n);
-    }
-    return 0;
-}
-
 }  // namespace
 
-void write_file_atomically(const fs::path& path, std::span<const std::byte> bytes) {
+AtomicFile::AtomicFile(fs::path path) : path_(std::move(path)) {
     std::error_code ec;
-    const auto status = fs::status(path, ec);
-    if (fs::is_directory(status)) fail(path, "it is a directory");
-    const bool in_place = fs::exists(status) && !fs::is_regular_file(status);
-    const fs::path parent = path.has_parent_path() ? path.parent_path() : fs::path(".");
-    if (!in_place && !fs::is_directory(parent, ec))
-        fail(path, "directory '" + parent.string() + "' does not exist");
+    const auto status = fs::status(path_, ec);
+    if (fs::is_directory(status)) fail("it is a directory");
+    in_place_ = fs::exists(status) && !fs::is_regular_file(status);
+    const fs::path parent = path_.has_parent_path() ? path_.parent_path() : fs::path(".");
+    if (!in_place_ && !fs::is_directory(parent, ec)) fail("directory '" + parent.string() + "' does not exist");
 
-    if (!in_place) remove_stale_temporaries(path, parent);
-    const fs::path written = in_place ? path : temporary_beside(path);
-    const int flags = in_place ? O_WRONLY | O_CLOEXEC : O_WRONLY | O_CREAT | O_EXCL | O_CLOEXEC;
-    const int fd = ::open(written.c_str(), flags, 0644);
-    if (fd < 0) fail(path, std::strerror(errno));
+    if (!in_place_) remove_stale_temporaries(path_, parent);
+    written_ = in_place_ ? path_ : temporary_beside(path_);
+    const int flags = in_place_ ? O_WRONLY | O_CLOEXEC : O_WRONLY | O_CREAT | O_EXCL | O_CLOEXEC;
+    fd_ = ::open(written_.c_str(), flags, 0644);
+    if (fd_ < 0) fail(std::strerror(errno));
+}
 
-    int error = write_all(fd, bytes);
+AtomicFile::~AtomicFile() {
+    if (fd_ < 0) return;
+    ::close(fd_);
+    std::error_code ignored;
+    if (!in_place_) fs::remove(written_, ignored);
+}
+
+void AtomicFile::fail(const std::string& why) {
+    if (fd_ >= 0) {
+        ::close(fd_);
+        fd_ = -1;
+        std::error_code ignored;
+        if (!in_place_) fs::remove(written_, ignored);
+    }
+    throw Error("cannot write '" + path_.string() + "': " + why);
+}
+
+void AtomicFile::write_at(uint64_t offset, std::span<const std::byte> bytes) {
+    if (fd_ < 0) fail("the file is already closed");
+    if (in_place_ && offset != end_) fail("it is not a regular file, and the encoder needs to seek");
+    size_t done = 0;
+    while (done < bytes.size()) {
+        // A regular file takes every write at its offset (the encoder may seek back); a device
+        // or pipe only in order.
+        const ssize_t n = in_place_ ? ::write(fd_, bytes.data() + done, bytes.size() - done)
+                                    : ::pwrite(fd_, bytes.data() + done, bytes.size() - done, off_t(offset + done));
+        if (n < 0) {
+            if (errno == EINTR) continue;
+            fail(std::strerror(errno));
+        }
+        if (n == 0) fail(std::strerror(EIO));
+        done += size_t(n);
+    }
+    end_ = offset + bytes.size();
+}
+
+void AtomicFile::commit() {
+    if (fd_ < 0) fail("the file is already closed");
     // fsync before rename: after a crash the name must not point at unwritten blocks. Devices
     // and pipes may refuse fsync (EINVAL), which is not a failure of the write.
-    if (error == 0 && ::fsync(fd) != 0 && !(in_place && (errno == EINVAL || errno == EROFS)))
-        error = errno;
-    if (::close(fd) != 0 && error == 0) error = errno;
-    if (error != 0) {
-        if (!in_place) fs::remove(written, ec);
-        fail(path, std::strerror(error));
+    if (::fsync(fd_) != 0 && !(in_place_ && (errno == EINVAL || errno == EROFS))) fail(std::strerror(errno));
+    const int fd = fd_;
+    fd_ = -1;
+    if (::close(fd) != 0) {
+        const int error = errno;
+        std::error_code ignored;
+        if (!in_place_) fs::remove(written_, ignored);
+        throw Error("cannot write '" + path_.string() + "': " + std::strerror(error));
     }
-    if (!in_place) {
-        fs::rename(written, path, ec);
-        if (ec) {
-            fs::remove(written, ec);
-            fail(path, ec.message());
-        }
+    if (in_place_) return;
+    std::error_code ec;
+    fs::rename(written_, path_, ec);
+    if (ec) {
+        std::error_code ignored;
+        fs::remove(written_, ignored);
+        throw Error("cannot write '" + path_.string() + "': " + ec.message());
     }
+}
+
+void write_file_atomically(const fs::path& path, std::span<const std::byte> bytes) {
+    AtomicFile file(path);
+    file.write_at(0, bytes);
+    file.commit();
 }
 
 }  // namespace tessera

@@ -8,20 +8,12 @@
 
 #include "raster/atomic_file.h"
 #include "raster/error.h"
+#include "raster/oiio_pixel_type.h"
 
 namespace tessera {
 namespace fs = std::filesystem;
 
 namespace {
-
-OIIO::TypeDesc oiio_type(PixelType type) {
-    switch (type) {
-        case PixelType::u8: return OIIO::TypeDesc::UINT8;
-        case PixelType::u16: return OIIO::TypeDesc::UINT16;
-        case PixelType::f32: return OIIO::TypeDesc::FLOAT;
-    }
-    return OIIO::TypeDesc::UNKNOWN;
-}
 
 std::string describe(const fs::path& path) { return "'" + path.string() + "'"; }
 

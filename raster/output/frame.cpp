@@ -33,21 +33,23 @@ std::string lower_extension(const std::filesystem::path& path) {
 std::vector<uint8_t> encode_srgb8(const Frame& frame) { return encode<uint8_t>(frame, 255.0f); }
 std::vector<uint16_t> encode_srgb16(const Frame& frame) { return encode<uint16_t>(frame, 65535.0f); }
 
-OwnedImage encode_frame(const std::filesystem::path& path, const Frame& frame) {
+PixelType frame_pixel_type(const std::filesystem::path& path) {
     const std::string ext = lower_extension(path);
-    OwnedImage image{frame.width, frame.height, 4, PixelType::u8, {}};
+    if (ext == ".exr") return PixelType::f32;
+    if (ext == ".tif" || ext == ".tiff") return PixelType::u16;
+    return PixelType::u8;
+}
+
+OwnedImage encode_frame(const std::filesystem::path& path, const Frame& frame) {
+    OwnedImage image{frame.width, frame.height, 4, frame_pixel_type(path), {}};
     const auto keep = [&image](const auto& values) {
         const auto* bytes = reinterpret_cast<const uint8_t*>(values.data());
         image.bytes.assign(bytes, bytes + values.size() * sizeof(values[0]));
     };
-    if (ext == ".exr") {
-        image.type = PixelType::f32;
-        keep(frame.pixels);
-    } else if (ext == ".tif" || ext == ".tiff") {
-        image.type = PixelType::u16;
-        keep(encode_srgb16(frame));
-    } else {
-        image.bytes = encode_srgb8(frame);
+    switch (image.type) {
+        case PixelType::f32: keep(frame.pixels); break;
+        case PixelType::u16: keep(encode_srgb16(frame)); break;
+        case PixelType::u8: image.bytes = encode_srgb8(frame); break;
     }
     return image;
 }

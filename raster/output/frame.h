@@ -35,6 +35,9 @@ struct Frame {
 std::vector<uint8_t> encode_srgb8(const Frame& frame);
 std::vector<uint16_t> encode_srgb16(const Frame& frame);
 
+// The pixel type `path`'s extension stores (see above).
+PixelType frame_pixel_type(const std::filesystem::path& path);
+
 // The frame encoded as `path`'s extension asks (see above), ready for write_image or for the
 // background FrameWriter (frame_writer.h).
 OwnedImage encode_frame(const std::filesystem::path& path, const Frame& frame);

@@ -44,6 +44,11 @@ std::vector<std::filesystem::path> FrameWriter::written() const {
     return written_;
 }
 
+void FrameWriter::record_written(std::filesystem::path path) {
+    std::lock_guard lock(mutex_);
+    written_.push_back(std::move(path));
+}
+
 void FrameWriter::run() {
     for (;;) {
         Job job;

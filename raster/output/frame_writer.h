@@ -38,6 +38,9 @@ public:
     void finish();
     // Paths written so far, in completion order.
     std::vector<std::filesystem::path> written() const;
+    // Adds a frame the caller wrote itself (streamed band by band, image_stream.h), so that
+    // written() stays the one list of finished frames.
+    void record_written(std::filesystem::path path);
 
 private:
     struct Job {
