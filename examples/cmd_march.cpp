@@ -3,7 +3,7 @@
 // writes it as an image.
 //
 //   tessera march --scene metaballs --kernel blinn --balls 6 --time 2.5 -o blobs.png
-//   tessera march --scene terrain --strategy geometric --fog-density 0.01 --fog-falloff 0.3 \
+//   tessera march --scene terrain --strategy geometric --fog-density 0.01 --fog-falloff 0.3
 //                 --fog-colour 0.7,0.75,0.8 --size 1920x1080 -o terrain.exr
 //   tessera march --scene metaballs --reflectivity 0.6 --cube-map 'media/sky_{face}.png' -o m.png
 #include <chrono>

@@ -18,6 +18,7 @@
 #include <cstdio>
 #include <filesystem>
 #include <map>
+#include <optional>
 #include <set>
 #include <string>
 #include <vector>
@@ -29,6 +30,7 @@
 #include "raster/error.h"
 #include "raster/farm/frame_claim.h"
 #include "raster/image_io.h"
+#include "raster/image_stream.h"
 #include "raster/output/frame.h"
 #include "raster/output/frame_sequence.h"
 #include "raster/output/frame_writer.h"
@@ -51,9 +53,10 @@ extern "C" void on_interrupt(int) {
     std::signal(SIGINT, SIG_DFL);
 }
 
-// Frames beyond this many pixels would need the streamed tiled output (not built yet):
-// 8192 x 8192 keeps the float frame, visibility and encode buffers near 2 GiB.
-constexpr int64_t kMaxPixels = int64_t(8192) * 8192;
+// Frames up to 8K (and anything within one 8192 x 8192 viewport) are rendered whole in memory
+// and written by the background FrameWriter; larger ones are rendered band by band and
+// streamed into the file (band_layout.h, image_stream.h), up to this size per side.
+constexpr int kMaxSide = 65536;
 
 struct Options {
     std::string scene = "snakes";
@@ -63,31 +66,6 @@ struct Options {
     bool resume = false, stats = false, quiet = false;
     FarmOptions farm;  // --claim, --checkpoint-every, --distribute (render_farm.h)
 };
-
-std::string lower_extension(const fs::path& p) {
-    std::string e = p.extension().string();
-    std::transform(e.begin(), e.end(), e.begin(), [](unsigned char c) { return char(std::tolower(c)); });
-    return e;
-}
-
-// The frame in the file's encoding (frame.h: PNG 8-bit sRGB, TIFF 16-bit sRGB, EXR float).
-OwnedImage encode(const Frame& frame, const fs::path& path) {
-    OwnedImage image{frame.width, frame.height, 4, PixelType::u8, {}};
-    const std::string ext = lower_extension(path);
-    if (ext == ".exr") {
-        image.type = PixelType::f32;
-        image.bytes.resize(frame.pixels.size() * sizeof(glm::vec4));
-        std::memcpy(image.bytes.data(), frame.pixels.data(), image.bytes.size());
-    } else if (ext == ".tif" || ext == ".tiff") {
-        image.type = PixelType::u16;
-        const std::vector<uint16_t> v = encode_srgb16(frame);
-        image.bytes.resize(v.size() * 2);
-        std::memcpy(image.bytes.data(), v.data(), image.bytes.size());
-    } else {
-        image.bytes = encode_srgb8(frame);
-    }
-    return image;
-}
 
 // Fails before any rendering when the output directory cannot take files.
 void prepare_output_directory(const fs::path& first_file) {
@@ -138,9 +116,9 @@ int run(const Options& o, const std::string& executable) {
     // Flags over the scene's defaults, all checked before any work.
     int width = spec.size.x, height = spec.size.y;
     if (!o.size.empty()) parse_size(o.size, "--size", width, height);
-    if (int64_t(width) * height > kMaxPixels)
-        throw UsageError("--size " + std::to_string(width) + "x" + std::to_string(height) +
-                         ": frames above 8192x8192 pixels need streamed tiled output, which this build lacks");
+    if (width > kMaxSide || height > kMaxSide)
+        throw UsageError("--size " + std::to_string(width) + "x" + std::to_string(height) + ": at most " +
+                         std::to_string(kMaxSide) + " pixels per side");
     FrameRange range{spec.animation.first, spec.animation.last};
     if (!o.frames.empty()) range = parse_frame_range(o.frames);
     const Shard shard = parse_shard(o.shard);
@@ -194,8 +172,12 @@ int run(const Options& o, const std::string& executable) {
     FrameRenderer frame_renderer(scene, width, height, renderer, shadows);
     FrameWriter writer(2);
     FarmRun farm(o.farm, o.resume, scene, scene_name, pattern.path_for(range.first));
-    const auto [rows_first, rows_last] = dist.rows(height);
-    frame_renderer.set_rows(rows_first, rows_last);
+    const bool banded = needs_bands(width, height);
+    const BandLayout layout = band_layout(width, height);
+    if (!banded) {
+        const auto [rows_first, rows_last] = dist.rows(height);
+        frame_renderer.set_rows(rows_first, rows_last);
+    }
     // Distributed: a failure is handed to rank 0 (which names the rank and the frame) instead
     // of ending this rank alone. A failed write names the first frame not yet on disk.
     std::vector<std::pair<fs::path, int>> submitted;
@@ -225,37 +207,61 @@ int run(const Options& o, const std::string& executable) {
         const fs::path path = pattern.path_for(f);
         if (!farm.claim(path, width, height)) continue;
         FrameStats st;
-        Frame frame;
-        std::string failure = std::move(tile_failure);
-        tile_failure.clear();
-        try {
-            farm.simulate(f);
-            TraceScope t("frame", "frame", f);
-            frame = frame_renderer.render(float(f) / fps, &st);
-        } catch (const std::exception& e) {
-            if (dist.ranks() == 1) throw;
-            if (failure.empty()) failure = e.what();
-        }
-        if (mode == DistributeMode::tiles) {
-            const int reported = tile_failure_frame >= 0 && !failure.empty() ? tile_failure_frame : f;
-            tile_failure_frame = -1;
-            if (!dist.gather(reported, frame, failure)) continue;
-        } else if (!failure.empty()) {
-            dist.fail(f, failure);
-            break;
-        }
-        try {
-            writer.submit(path, encode(frame, path));
-            submitted.emplace_back(path, f);
-        } catch (const Error& e) {
-            if (dist.ranks() == 1) throw;
-            if (mode == DistributeMode::tiles) {
-                tile_failure = e.what();
-                tile_failure_frame = failed_write();
-                continue;
+        if (banded) {
+            // Rendered band by band and streamed into the file (on rank 0 in tiles mode); the
+            // file is created with the first band and published with the last.
+            std::optional<ImageStream> file;
+            const auto write = [&](int b, const Frame& band) {
+                if (!file) file.emplace(path, width, height, 4, frame_pixel_type(path));
+                file->write_rows(layout.rows(b).first, encode_frame(path, band).view());
+                if (b + 1 == layout.bands()) file->commit();
+            };
+            const auto render = [&](const FrameRenderer::BandFilter& mine, const FrameRenderer::BandSink& deliver) {
+                farm.simulate(f);
+                TraceScope t("frame", "frame", f);
+                frame_renderer.render_bands(float(f) / fps, layout, mine, deliver, &st);
+            };
+            try {
+                if (!dist.stream_bands(f, layout, render, write)) continue;
+            } catch (const std::exception& e) {
+                if (dist.ranks() == 1) throw;
+                dist.fail(f, e.what());
+                break;
             }
-            dist.fail(failed_write(), e.what());
-            break;
+            writer.record_written(path);
+        } else {
+            Frame frame;
+            std::string failure = std::move(tile_failure);
+            tile_failure.clear();
+            try {
+                farm.simulate(f);
+                TraceScope t("frame", "frame", f);
+                frame = frame_renderer.render(float(f) / fps, &st);
+            } catch (const std::exception& e) {
+                if (dist.ranks() == 1) throw;
+                if (failure.empty()) failure = e.what();
+            }
+            if (mode == DistributeMode::tiles) {
+                const int reported = tile_failure_frame >= 0 && !failure.empty() ? tile_failure_frame : f;
+                tile_failure_frame = -1;
+                if (!dist.gather(reported, frame, failure)) continue;
+            } else if (!failure.empty()) {
+                dist.fail(f, failure);
+                break;
+            }
+            try {
+                writer.submit(path, encode_frame(path, frame));
+                submitted.emplace_back(path, f);
+            } catch (const Error& e) {
+                if (dist.ranks() == 1) throw;
+                if (mode == DistributeMode::tiles) {
+                    tile_failure = e.what();
+                    tile_failure_frame = failed_write();
+                    continue;
+                }
+                dist.fail(failed_write(), e.what());
+                break;
+            }
         }
         farm.published(writer.written());
         ++done;

@@ -5,9 +5,13 @@
 //           with its own TBB threads and writes its own frames;
 //   tiles   MPI: every rank renders every frame but shades only its band of rows
 //           (FrameRenderer::set_rows); the bands are gathered to rank 0, which writes.
+//           Frames too large for memory (band_layout.h) go band by band instead: band b is
+//           rendered by rank b % ranks alone and sent to rank 0, which streams the bands into
+//           the file in order, so no rank ever holds the frame.
 // A rank that fails hands its error to rank 0, which stops handing out work, lets the other
 // ranks finish their frames and exits naming the rank and the frame.
 #pragma once
+#include <functional>
 #include <memory>
 #include <optional>
 #include <string>
@@ -16,6 +20,7 @@
 #include <vector>
 
 #include "raster/output/frame.h"
+#include "raster/render/frame_renderer.h"
 
 namespace tessera::cli {
 
@@ -40,6 +45,18 @@ public:
     // complete. `failure` non-empty: this rank failed on the frame; every rank then gets
     // false and finish() reports it. Other modes: returns true.
     virtual bool gather(int frame_number, Frame& frame, const std::string& failure) { return failure.empty(); }
+    // A frame rendered in bands: render(mine, deliver) renders the bands mine(b) selects and
+    // delivers each in order; write(b, pixels) stores band b (bands arrive in order from 0).
+    // Locally every band is rendered and written, and failures are thrown. Tiles mode: see
+    // above; failures are exchanged instead, and the result is as gather()'s.
+    using RenderBands = std::function<void(const FrameRenderer::BandFilter&, const FrameRenderer::BandSink&)>;
+    virtual bool stream_bands(int frame_number, const BandLayout& layout, const RenderBands& render,
+                              const FrameRenderer::BandSink& write) {
+        (void)frame_number;
+        (void)layout;
+        render([](int) { return true; }, write);
+        return true;
+    }
     // This rank failed on `frame` (frames mode): rank 0 learns of it, no more frames follow.
     virtual void fail(int frame, const std::string& message) = 0;
     // Waits for the other ranks. Throws tessera::Error naming the failed rank and frame on

@@ -62,7 +62,6 @@ expect_error 2 "frame" --scene flag --frames abc --out "$dir/bad/x_####.png"
 expect_error 2 "shard" --scene flag --shard 2/2 --out "$dir/bad/x_####.png"
 expect_error 2 "would overwrite" --scene flag --frames 1:3 --out "$dir/bad/x.png"
 expect_error 2 "no image format" --scene flag --frames 1 --out "$dir/bad/x.nope"
-expect_error 2 "8192x8192" --scene flag --frames 1 --size 16384x16384 --out "$dir/bad/x.exr"
 expect_error 2 "--shadows" --scene flag --frames 1 --shadows soft --size 8x8 --out "$dir/bad/x.png"
 echo '{"objects": [{"type": "sphere", "material": 3}]}' > "$dir/broken.json"
 expect_error 1 "broken.json: /objects/0/material: expected a string, got a number" --scene "$dir/broken.json" --out "$dir/bad/x.png" --frames 1

@@ -26,6 +26,19 @@ for m in frames tiles; do
   for f in "$dir"/ref/*.png; do cmp -s "$f" "$dir/$m/$(basename "$f")" || fail "$m: $(basename "$f") differs"; done
 done
 
+# Frames beyond one pass: bands streamed into the file; in tiles mode band b is rendered by
+# rank b % 2 and rank 0 writes them all, in order.
+big=(--scene flag --size 64x8320 --frames 1:2)  # two bands: 8192 + 128 rows
+"$tessera" render --quiet "${big[@]}" --out "$dir/bigref/b_####.png" || fail "single-process banded run exited $?"
+for m in frames tiles; do
+  mpi "${big[@]}" --distribute $m --out "$dir/big$m/b_####.png" || fail "banded --distribute $m exited $?"
+  for f in "$dir"/bigref/*.png; do cmp -s "$f" "$dir/big$m/$(basename "$f")" || fail "banded $m: $(basename "$f") differs"; done
+done
+mkdir -p "$dir/bigfail/b_0001.png"
+err=$(mpi "${big[@]}" --distribute tiles --out "$dir/bigfail/b_####.png" 2>&1) && fail "banded tiles: a failed write did not fail the job"
+grep -q "rank 0 failed on frame 1: " <<<"$err" || fail "banded tiles: error does not name rank 0 and frame 1: $err"
+[ "$(ls -A "$dir/bigfail")" = "b_0001.png" ] || fail "banded tiles failure left: $(ls -A "$dir/bigfail")"
+
 # A growing skin (state carried from frame to frame) over ranks that get frames on demand.
 scene=$(dirname "$0")/data/growing_skin.json
 "$tessera" render --quiet --scene "$scene" --frames 0:9 --out "$dir/gref/g_####.png" || fail "growing reference"

@@ -23,6 +23,8 @@ namespace {
 
 constexpr int kTagRequest = 1;  // worker -> rank 0: Message
 constexpr int kTagFrame = 2;    // rank 0 -> worker: int frame, -1 = no more
+constexpr int kTagBand = 3;     // worker -> rank 0: Message for one band (done or failed)
+constexpr int kTagPixels = 4;   // worker -> rank 0: the band's float RGBA, after a done Message
 // Rows per band boundary: a multiple of the renderers' tile sizes (128 raster, 64 rays), so a
 // tile is shaded by one rank only.
 constexpr int kBandAlign = 128;
@@ -242,6 +244,92 @@ public:
                          MPI_FLOAT, 0, MPI_COMM_WORLD, &request);
         wait_politely(request);
         return rank_ == 0;
+    }
+
+    bool stream_bands(int frame_number, const BandLayout& layout, const RenderBands& render,
+                      const FrameRenderer::BandSink& write) override {
+        std::string failure;  // rank 0: the frame's first failure; a worker: its own
+        int failed_rank = -1;
+        if (rank_ == 0) {
+            const auto fail_with = [&](int rank, const std::string& why) {
+                if (failed_rank < 0) failed_rank = rank, failure = why;
+            };
+            const auto store = [&](int b, const Frame& band) {
+                if (failed_rank >= 0) return;  // the frame is lost; its temporary goes
+                try {
+                    write(b, band);
+                } catch (const std::exception& e) {
+                    fail_with(0, e.what());
+                }
+            };
+            // Every other rank's band before `end`, in order: written, or discarded once the
+            // frame has failed (the senders must not wait forever).
+            int next = 0;
+            const auto receive_until = [&](int end) {
+                for (; next < end; ++next) {
+                    const int from = next % ranks_;
+                    if (from == 0) continue;
+                    Message m;
+                    MPI_Request request;
+                    MPI_Irecv(&m, sizeof m, MPI_BYTE, from, kTagBand, MPI_COMM_WORLD, &request);
+                    wait_politely(request);
+                    if (m.kind == Message::failed) {
+                        m.text.back() = '\0';
+                        fail_with(from, m.text.data());
+                        continue;
+                    }
+                    const auto [y0, y1] = layout.rows(next);
+                    Frame band(layout.width, y1 - y0);
+                    MPI_Irecv(band.pixels.data(), int(band.pixels.size() * 4), MPI_FLOAT, from, kTagPixels,
+                              MPI_COMM_WORLD, &request);
+                    wait_politely(request);
+                    store(next, band);
+                }
+            };
+            try {
+                render([&](int b) { return b % ranks_ == 0 && failed_rank < 0; },
+                       [&](int b, const Frame& band) {
+                           receive_until(b);
+                           store(b, band);
+                           next = b + 1;
+                       });
+            } catch (const std::exception& e) {
+                fail_with(0, e.what());
+            }
+            receive_until(layout.bands());
+        } else {
+            int next = rank_;  // this rank's next band not yet sent
+            const auto send = [&](const Frame* band, const std::string& why) {
+                Message m;
+                m.kind = band ? Message::done : Message::failed;
+                m.frame = frame_number;
+                std::strncpy(m.text.data(), why.c_str(), m.text.size() - 1);
+                MPI_Request request;
+                MPI_Isend(&m, sizeof m, MPI_BYTE, 0, kTagBand, MPI_COMM_WORLD, &request);
+                wait_politely(request);
+                if (band) {
+                    MPI_Isend(band->pixels.data(), int(band->pixels.size() * 4), MPI_FLOAT, 0, kTagPixels,
+                              MPI_COMM_WORLD, &request);
+                    wait_politely(request);  // one band in flight: memory stays one band
+                }
+                next += ranks_;
+            };
+            try {
+                render([&](int b) { return b % ranks_ == rank_; }, [&](int, const Frame& band) { send(&band, ""); });
+            } catch (const std::exception& e) {
+                failure = e.what();
+            }
+            while (next < layout.bands()) send(nullptr, failure.empty() ? "a band was not rendered" : failure);
+        }
+        // Everyone learns whether the frame failed, and stops after it if so.
+        MPI_Request request;
+        MPI_Ibcast(&failed_rank, 1, MPI_INT, 0, MPI_COMM_WORLD, &request);
+        wait_politely(request);
+        if (failed_rank < 0) return rank_ == 0;
+        stopped_ = true;
+        if (rank_ == 0) failure_ = failure_text(failed_rank, frame_number, failure);
+        else failed_self_ = !failure.empty();
+        return false;
     }
 
     // A failed write after the last gather (rank 0 writes every frame).
