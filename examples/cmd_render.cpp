@@ -30,8 +30,8 @@
 #include "raster/error.h"
 #include "raster/farm/frame_claim.h"
 #include "raster/image_io.h"
-#include "raster/image_stream.h"
 #include "raster/output/frame.h"
+#include "raster/output/frame_stream.h"
 #include "raster/output/frame_sequence.h"
 #include "raster/output/frame_writer.h"
 #include "raster/render/frame_renderer.h"
@@ -210,10 +210,10 @@ int run(const Options& o, const std::string& executable) {
         if (banded) {
             // Rendered band by band and streamed into the file (on rank 0 in tiles mode); the
             // file is created with the first band and published with the last.
-            std::optional<ImageStream> file;
+            std::optional<FrameStream> file;
             const auto write = [&](int b, const Frame& band) {
-                if (!file) file.emplace(path, width, height, 4, frame_pixel_type(path));
-                file->write_rows(layout.rows(b).first, encode_frame(path, band).view());
+                if (!file) file.emplace(path, width, height);
+                file->write(layout.rows(b).first, band);
                 if (b + 1 == layout.bands()) file->commit();
             };
             const auto render = [&](const FrameRenderer::BandFilter& mine, const FrameRenderer::BandSink& deliver) {
