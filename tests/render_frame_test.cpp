@@ -97,6 +97,42 @@ TEST(RenderFrame, RasterAndRayCastAgreeAwayFromEdges) {
     }
 }
 
+// Two overlapping glass panes (blue in front of, and submitted after, a red one) and a glass
+// ball over the floor: the ray caster passes through them and blends them in submission order
+// as the rasterizer does.
+const char* kGlass = R"({
+  "camera": {"eye": [0, 3, 4], "lookat": [0, 0, 0], "fov": 50},
+  "background": {"type": "colour", "colour": [0.2, 0.3, 0.4]},
+  "lights": [{"direction": [0.2, 1, 0.5], "La": [0.3, 0.3, 0.3], "Le": [1, 1, 1]}],
+  "materials": {"floor": {"model": "phong", "kd": [0.7, 0.7, 0.6], "ka": [0.5, 0.5, 0.5], "ks": [0, 0, 0]},
+                "red": {"model": "phong", "kd": [0.9, 0.1, 0.1], "opacity": 0.5},
+                "blue": {"model": "phong", "kd": [0.1, 0.2, 0.9], "opacity": 0.4}},
+  "objects": [
+    {"type": "box", "material": "floor", "size": [6, 0.2, 6], "transform": {"translate": [0, -1.1, 0]}},
+    {"type": "box", "material": "red", "size": [1.6, 1.6, 0.05], "transform": {"translate": [-0.4, 0, -0.5]}},
+    {"type": "box", "material": "blue", "size": [1.6, 1.6, 0.05], "transform": {"translate": [0.4, 0.2, 0.5]}},
+    {"type": "sphere", "material": "blue", "radius": 0.4, "tessellation": [24, 12], "centre": [1.6, -0.5, 0.8]}
+  ]
+})";
+
+TEST(RenderFrame, RayCastBlendsTransparencyAsTheRasterizerDoes) {
+    const int w = 160, h = 120;
+    const Frame raster = render(kGlass, w, h, RendererKind::raster, ShadowMode::none);
+    const Frame rays = render(kGlass, w, h, RendererKind::raytrace, ShadowMode::none);
+    size_t differ = 0;
+    for (size_t i = 0; i < raster.pixels.size(); ++i)
+        differ += glm::length(raster.pixels[i] - rays.pixels[i]) > 2.0f / 255.0f;
+    EXPECT_LT(differ, raster.pixels.size() / 50);
+    // Where the panes overlap, both colours show: the red pane through the blue one.
+    const glm::ivec2 p = pixel_of({0.0f, 0.3f, 0.5f}, w, h);
+    for (const Frame* f : {&raster, &rays}) {
+        const glm::vec4 c = f->at(p.x, p.y);
+        EXPECT_GT(c.r, 0.15f) << "red pane not seen through the blue one";
+        EXPECT_GT(c.b, c.g) << "blue pane missing";
+        EXPECT_FLOAT_EQ(c.a, 1.0f);
+    }
+}
+
 TEST(RenderFrame, SameBytesWithOneAndTwoThreads) {
     for (ShadowMode s : {ShadowMode::none, ShadowMode::rays, ShadowMode::map})
         for (RendererKind r : {RendererKind::raster, RendererKind::raytrace}) {

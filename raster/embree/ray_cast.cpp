@@ -4,6 +4,9 @@
 #include "raster/embree/pixel_rays.h"
 #include "raster/embree/tiles.h"
 
+#include <stdexcept>
+#include <string>
+
 namespace tessera::rt {
 namespace {
 
@@ -13,10 +16,33 @@ struct DepthCache {
     PixelRays::DepthPlane plane;
 };
 
+// An intersect context whose filter rejects hits on skipped triangles, so traversal goes on
+// behind them (Embree passes the context through; it must be the first member).
+struct SkipContext {
+    RTCIntersectContext context;
+    const uint8_t* skip;
+};
+
+void skip_filter(const RTCFilterFunctionNArguments* args) {
+    const uint8_t* skip = reinterpret_cast<const SkipContext*>(args->context)->skip;
+    for (unsigned i = 0; i < args->N; ++i)
+        if (args->valid[i] != 0 && skip[RTCHitN_primID(args->hit, args->N, i)]) args->valid[i] = 0;
+}
+
+SkipContext make_context(bool coherent, std::span<const uint8_t> skip) {
+    SkipContext c;
+    if (coherent) c.context = coherent_context();
+    else rtcInitIntersectContext(&c.context);
+    c.skip = skip.data();
+    if (!skip.empty()) c.context.filter = skip_filter;
+    return c;
+}
+
 struct Frame {
     const RayScene& scene;
     const PixelRays& rays;
     VisibilityBuffer& out;
+    std::span<const uint8_t> skip;
 
     // Depth from the hit triangle's plane at the pixel centre (pixel_rays.h); from the hit
     // point only for a plane through the eye, which a ray can hit only on its edge.
@@ -37,8 +63,8 @@ struct Frame {
 };
 
 void trace_single(const Frame& frame, const ImageTile& tile) {
-    RTCIntersectContext context;
-    rtcInitIntersectContext(&context);
+    SkipContext skip = make_context(false, frame.skip);
+    RTCIntersectContext& context = skip.context;
     DepthCache cache;
     for (int y = tile.y0; y < tile.y1; ++y)
         for (int x = tile.x0; x < tile.x1; ++x) {
@@ -64,7 +90,8 @@ void trace_single(const Frame& frame, const ImageTile& tile) {
 template <int N>
 void trace_packets(const Frame& frame, const ImageTile& tile) {
     using P = Packet<N>;
-    RTCIntersectContext context = coherent_context();
+    SkipContext skip = make_context(true, frame.skip);
+    RTCIntersectContext& context = skip.context;
     DepthCache cache;
     for (int by = tile.y0; by < tile.y1; by += P::kHeight)
         for (int bx = tile.x0; bx < tile.x1; bx += P::kWidth) {
@@ -91,10 +118,13 @@ void trace_packets(const Frame& frame, const ImageTile& tile) {
 }  // namespace
 
 void cast_primary_rays(const RayScene& scene, const glm::mat4& view_projection, int width,
-                       int height, VisibilityBuffer& out, RayPacket packet) {
+                       int height, VisibilityBuffer& out, RayPacket packet, std::span<const uint8_t> skip) {
+    if (!skip.empty() && skip.size() != scene.mesh().triangle_count())
+        throw std::invalid_argument("cast_primary_rays: " + std::to_string(skip.size()) + " skip flags for " +
+                                    std::to_string(scene.mesh().triangle_count()) + " triangles");
     const PixelRays rays(view_projection, width, height);
     out.reset(width, height);
-    const Frame frame{scene, rays, out};
+    const Frame frame{scene, rays, out, skip};
     parallel_for_tiles(width, height, [&](const ImageTile& tile) {
         const FlushDenormals flush;  // Embree's per-thread recommendation (device.h)
         switch (packet) {

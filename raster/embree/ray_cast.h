@@ -11,6 +11,9 @@
 #pragma once
 #include <glm/glm.hpp>
 
+#include <cstdint>
+#include <span>
+
 #include "raster/embree/scene.h"
 #include "raster/visibility.h"
 
@@ -20,9 +23,12 @@ namespace tessera::rt {
 // packets of 8 or 16 (rtcIntersect8/16, rtcOccluded8/16 with the COHERENT context flag).
 enum class RayPacket { single = 1, x8 = 8, x16 = 16 };
 
-// Resets `out` to width x height and fills it. Throws std::invalid_argument for a
-// non-positive size.
+// Resets `out` to width x height and fills it. Rays pass through the triangles t with
+// skip[t] != 0 (transparent ones, blended afterwards as the rasterizer does: its opaque pass
+// leaves them out too); `skip` is empty or has one entry per triangle. Throws
+// std::invalid_argument for a non-positive size or a `skip` of the wrong length.
 void cast_primary_rays(const RayScene& scene, const glm::mat4& view_projection, int width,
-                       int height, VisibilityBuffer& out, RayPacket packet = RayPacket::x16);
+                       int height, VisibilityBuffer& out, RayPacket packet = RayPacket::x16,
+                       std::span<const uint8_t> skip = {});
 
 }  // namespace tessera::rt

@@ -60,10 +60,13 @@ RayScene::RayScene(const RayDevice& device, const Mesh& mesh, BvhUpdate update)
                                     " indices, not a multiple of 3");
     const RTCDevice handle = device.handle();
     scene_ = rtcNewScene(handle);
-    rtcSetSceneFlags(scene_, RTC_SCENE_FLAG_ROBUST);
+    // Context filters: primary rays pass through transparent triangles, and the transparent
+    // pass collects them (ray_cast.h, transparent_hits.h); rays without a filter pay nothing.
+    const RTCSceneFlags flags = RTCSceneFlags(RTC_SCENE_FLAG_ROBUST | RTC_SCENE_FLAG_CONTEXT_FILTER_FUNCTION);
+    rtcSetSceneFlags(scene_, flags);
     device.check("cannot create a scene");
     if (update != BvhUpdate::none) {
-        rtcSetSceneFlags(scene_, RTC_SCENE_FLAG_DYNAMIC | RTC_SCENE_FLAG_ROBUST);
+        rtcSetSceneFlags(scene_, RTCSceneFlags(flags | RTC_SCENE_FLAG_DYNAMIC));
         rtcSetSceneBuildQuality(scene_, RTC_BUILD_QUALITY_LOW);
     }
     if (mesh.triangle_count() > 0 && mesh.vertex_count() > 0) {

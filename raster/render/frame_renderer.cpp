@@ -15,6 +15,7 @@
 #include "raster/embree/ray_cast.h"
 #include "raster/embree/scene.h"
 #include "raster/embree/shadow_rays.h"
+#include "raster/embree/transparent_hits.h"
 #include "raster/march/fog_pass.h"
 #include "raster/march/march_surface.h"
 #include "raster/march/metaball_orbits.h"
@@ -224,7 +225,7 @@ void FrameRenderer::Impl::prepare(float time, FrameState& frame, FrameStats& sta
         }
     bool any_transparent = false;
     for (const Material& m : s.materials) any_transparent |= m.transparent();
-    if (any_transparent && renderer == RendererKind::raster) {
+    if (any_transparent) {
         const std::vector<uint32_t>& material = frame.baked.triangle_material;
         frame.transparent.resize(material.size());
         for (size_t t = 0; t < material.size(); ++t) frame.transparent[t] = s.materials[material[t]].transparent();
@@ -325,12 +326,19 @@ void FrameRenderer::Impl::render_region(const FrameState& frame, const Region& r
                 shadowed += groups[mask].size();
             }
         }
-        if (v.context) {
-            // Transparent triangles, blended in submission order over what is drawn so far.
+        if (!frame.transparent.empty()) {
+            // Transparent triangles in front of the opaque surface, blended in submission order
+            // over what is drawn so far: the rasterizer replays its bins, rays collect them.
+            TraceScope t("transparent", "tile");
             std::vector<CoveredPixel> fragments;
-            v.context->for_each_transparent([&](uint32_t triangle, std::span<const Fragment> f) {
+            const auto add = [&](uint32_t triangle, std::span<const Fragment> f) {
                 for (const Fragment& frag : f) fragments.push_back({frag.x, frag.y, triangle});
-            });
+            };
+            if (v.context)
+                v.context->for_each_transparent(add);
+            else
+                rt::for_each_transparent_hit(*frame.rays, pixel_rays, frame.transparent, visibility,
+                                             rt::ImageTile{v.x0, v.y0, v.x1, v.y1}, add);
             if (!fragments.empty()) blend_fragments(shading, fragments, target);
         }
         for (const auto& pass : compute_passes) {
@@ -358,7 +366,8 @@ void FrameRenderer::Impl::render_region(const FrameState& frame, const Region& r
         {
             TraceScope trace("primary rays");
             const auto t0 = Clock::now();
-            rt::cast_primary_rays(*frame.rays, view_projection, w, h, visibility);
+            rt::cast_primary_rays(*frame.rays, view_projection, w, h, visibility, rt::RayPacket::x16,
+                                  frame.transparent);
             stats.visibility_ms += ms_since(t0);
         }
         TraceScope trace("tiles");
