@@ -74,7 +74,6 @@ struct TileView {
 // What every region of one frame shares, built once per frame: the animated scene baked, the
 // BVH, the lights' shadow tests, the metaballs at this time.
 struct FrameState {
-    float time = 0.0f;
     BakedScene baked;
     std::optional<rt::RayScene> rays;
     std::vector<glm::vec3> light_targets;
@@ -184,7 +183,6 @@ void FrameRenderer::render_bands(float time, const BandLayout& layout, const Ban
 
 void FrameRenderer::Impl::prepare(float time, FrameState& frame, FrameStats& stats) {
     Scene& s = scene.scene;
-    frame.time = time;
     {
         TraceScope trace("animate");
         const auto t0 = Clock::now();
