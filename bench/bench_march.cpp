@@ -38,9 +38,10 @@ MarchSettings strategy(int geometric) {
     return s;
 }
 
-// Marches the whole view in packets; returns hits (kept so nothing is optimised away).
-template <class Surface>
-int march_view(const Surface& surface, const RayGenerator& rays, const MarchSettings& settings, float t_far) {
+// Binds every packet of the view to the surface and counts the hits `march(field, packet,
+// segments)` reports for it (kept so nothing is optimised away).
+template <class Surface, class March>
+int count_hits(const Surface& surface, const RayGenerator& rays, float t_far, March march) {
     typename Surface::Scratch scratch{};
     int hits = 0;
     for (int y = 0; y < H; ++y)
@@ -49,29 +50,35 @@ int march_view(const Surface& surface, const RayGenerator& rays, const MarchSett
             rays.packet(x0, y, kMarchLanes, packet);
             PacketSegments segments;
             const auto& field = surface.bind(packet, t_far, segments, scratch);
-            alignas(64) float t[kMarchLanes];
-            march_packet(field, packet, segments, settings, t);
-            for (int i = 0; i < kMarchLanes; ++i) hits += t[i] != kMiss;
+            hits += march(field, packet, segments);
         }
     return hits;
+}
+
+// The whole view in packets.
+template <class Surface>
+int march_view(const Surface& surface, const RayGenerator& rays, const MarchSettings& settings, float t_far) {
+    return count_hits(surface, rays, t_far, [&](const auto& field, const RayPacket& packet,
+                                                const PacketSegments& segments) {
+        alignas(64) float t[kMarchLanes];
+        march_packet(field, packet, segments, settings, t);
+        int hits = 0;
+        for (int i = 0; i < kMarchLanes; ++i) hits += t[i] != kMiss;
+        return hits;
+    });
 }
 
 // The scalar reference: one ray at a time through march_ray.
 template <class Surface>
 int march_view_scalar(const Surface& surface, const RayGenerator& rays, const MarchSettings& settings, float t_far) {
-    typename Surface::Scratch scratch{};
-    int hits = 0;
-    for (int y = 0; y < H; ++y)
-        for (int x0 = 0; x0 < W; x0 += kMarchLanes) {
-            RayPacket packet;
-            rays.packet(x0, y, kMarchLanes, packet);
-            PacketSegments segments;
-            const auto& field = surface.bind(packet, t_far, segments, scratch);
-            for (int i = 0; i < kMarchLanes; ++i)
-                hits += march_ray(field, packet.origin(i), packet.direction(i),
-                                  Interval{segments.t0[i], segments.t1[i]}, settings) != kMiss;
-        }
-    return hits;
+    return count_hits(surface, rays, t_far, [&](const auto& field, const RayPacket& packet,
+                                                const PacketSegments& segments) {
+        int hits = 0;
+        for (int i = 0; i < kMarchLanes; ++i)
+            hits += march_ray(field, packet.origin(i), packet.direction(i), Interval{segments.t0[i], segments.t1[i]},
+                              settings) != kMiss;
+        return hits;
+    });
 }
 
 template <class Surface>

@@ -15,8 +15,9 @@
 #include "raster/geometry/param_surface.h"
 #include "raster/geometry/surfaces.h"
 #include "raster/rasterizer.h"
+#include "raster/render/frame_renderer.h"
+#include "raster/scene_file/scene_build.h"
 #include "raster/shade/frame_shading.h"
-#include "raster/shade/scene_renderer.h"
 #include "raster/texture/sampler.h"
 #include "raster/texture/sampler_simd.h"
 
@@ -181,23 +182,23 @@ void BM_TextureSampleSimd(benchmark::State& state) {
 }
 BENCHMARK(BM_TextureSampleSimd)->DenseRange(0, 3)->Unit(benchmark::kMicrosecond);
 
-// A whole 1080p frame: bake + raster + Phong shading of a 1M-triangle sphere (1000 x 500 quads).
+// A whole 1080p frame through FrameRenderer (the `tessera render` path, no shadows): bake +
+// raster + Phong shading of a 1M-triangle sphere (1000 x 500 quads).
 void BM_PhongFrame1080p(benchmark::State& state) {
     const int threads = int(state.range(0));
     tbb::global_control limit(tbb::global_control::max_allowed_parallelism, size_t(threads));
-    static Scene scene = sphere_scene(1000);
-    scene.materials[0] = Material{};
-    SceneRenderer renderer;
-    RasterStats stats;
+    static AnimatedScene scene = still_scene(sphere_scene(1000));
+    FrameRenderer renderer(scene, kWidth, kHeight, RendererKind::raster, ShadowMode::none);
+    FrameStats stats;
     for (auto _ : state) {
-        const Frame f = renderer.render(scene, kWidth, kHeight, {}, &stats);
+        const Frame f = renderer.render(0.0f, &stats);
         benchmark::DoNotOptimize(f.pixels.data());
     }
-    state.counters["triangles"] = double(stats.triangles);
-    state.counters["pixels"] = double(stats.visible_pixels);
+    state.counters["triangles"] = double(stats.raster.triangles);
+    state.counters["pixels"] = double(stats.raster.visible_pixels);
     // The last frame's split: the rasterizer's stages, and the tile passes (shading).
-    state.counters["raster_ms"] = stats.vertex_ms + stats.setup_bin_ms + stats.raster_ms;
-    state.counters["shade_ms"] = stats.passes_ms;
+    state.counters["raster_ms"] = stats.raster.vertex_ms + stats.raster.setup_bin_ms + stats.raster.raster_ms;
+    state.counters["shade_ms"] = stats.raster.passes_ms;
 }
 BENCHMARK(BM_PhongFrame1080p)->Arg(1)->Arg(2)->Unit(benchmark::kMillisecond)->UseRealTime();
 

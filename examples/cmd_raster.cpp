@@ -7,11 +7,9 @@
 #include <chrono>
 #include <memory>
 #include <cstdio>
-#include <sstream>
 #include <vector>
 
 #include "examples/command.h"
-#include "raster/camera_file.h"
 #include "raster/embree/ray_cast.h"
 #include "raster/embree/scene.h"
 #include "raster/embree/tile_passes.h"
@@ -25,22 +23,9 @@
 namespace tessera::cli {
 namespace {
 
-// "x,y,z" -> vec3, or a UsageError naming the flag.
-glm::vec3 parse_vec3(const std::string& text, const char* flag) {
-    std::istringstream in(text);
-    glm::vec3 v;
-    char c1 = 0, c2 = 0;
-    std::string rest;
-    if (!(in >> v.x >> c1 >> v.y >> c2 >> v.z) || c1 != ',' || c2 != ',' || (in >> rest))
-        throw UsageError(std::string(flag) + " expects x,y,z, got '" + text + "'");
-    return v;
-}
-
 struct Options {
-    std::string mesh, camera_file, size = "1920x1080";
-    std::string eye, lookat, up;
-    float fov = 0, near = 0, far = 0;
-    bool has_fov = false, has_near = false, has_far = false;
+    std::string mesh, size = "1920x1080";
+    CameraFlags camera;
     std::string shade = "phong", cull = "none";
     int threads = 0;
     std::string out_color, out_id, out_depth;
@@ -49,13 +34,6 @@ struct Options {
     int tile = 0;
     std::string renderer = "raster";
 };
-
-CullMode parse_cull(const std::string& text) {
-    if (text == "none") return CullMode::none;
-    if (text == "back") return CullMode::back;
-    if (text == "front") return CullMode::front;
-    throw UsageError("--cull expects none, back or front, got '" + text + "'");
-}
 
 void print_stats(const RasterStats& s, double shade_ms) {
     std::printf("stats: vertex_ms=%.3f clip_setup_bin_ms=%.3f raster_ms=%.3f shade_ms=%.3f total_ms=%.3f\n",
@@ -78,16 +56,7 @@ int run(const Options& o) {
             throw UsageError("--out-color: no image writer for '" + *path + "'");
     const Viewport viewport(width, height);  // checks the size limits
 
-    Camera camera;
-    if (!o.camera_file.empty()) read_camera_file(o.camera_file, camera);
-    if (!o.eye.empty()) camera.eye = parse_vec3(o.eye, "--eye");
-    if (!o.lookat.empty()) camera.lookat = parse_vec3(o.lookat, "--lookat");
-    if (!o.up.empty()) camera.up = parse_vec3(o.up, "--up");
-    if (o.has_fov) camera.fovy_deg = o.fov;
-    if (o.has_near) camera.near = o.near;
-    if (o.has_far) camera.far = o.far;
-    camera.aspect = float(width) / float(height);
-    validate_camera(camera);
+    const Camera camera = make_camera(o.camera, width, height);
 
     const bool raytrace = o.renderer == "raytrace";
     if (raytrace && (cull != CullMode::none || o.tile))
@@ -140,13 +109,7 @@ int run(const Options& o) {
     if (!o.out_id.empty()) write_tsid(o.out_id, visibility);
     if (!o.out_depth.empty()) write_depth_pfm(o.out_depth, visibility);
 
-    if (o.repeat > 0) {
-        std::vector<double> sorted = frame_ms;
-        std::sort(sorted.begin(), sorted.end());
-        const size_t n = sorted.size();
-        const double median = n % 2 ? sorted[n / 2] : 0.5 * (sorted[n / 2 - 1] + sorted[n / 2]);
-        std::printf("frame_ms median=%.3f min=%.3f max=%.3f\n", median, sorted.front(), sorted.back());
-    }
+    if (o.repeat > 0) print_frame_times(frame_ms);
     if (o.stats) {
         std::printf("stats: obj_faces=%zu obj_triangles=%zu bad_vertices=%zu skipped_triangles=%zu\n", load.faces,
                     load.triangles, load.bad_vertices, load.skipped_triangles);
@@ -167,15 +130,8 @@ Run define_raster(CLI::App& root) {
     Options& o = *options;
     CLI::App* cmd = root.add_subcommand("raster", "render one OBJ mesh with one camera through the tile rasterizer");
     cmd->add_option("--mesh", o.mesh, "OBJ file (faces fan-triangulated; triangle id = order in file)")->required();
-    cmd->add_option("--camera", o.camera_file, "camera file: lines 'eye x y z', 'lookat x y z', 'up x y z', "
-                                               "'fovy_deg f', 'near n', 'far f'");
     cmd->add_option("--size", o.size, "image size WIDTHxHEIGHT (at most 8192x8192)")->default_val("1920x1080");
-    cmd->add_option("--eye", o.eye, "camera position x,y,z (overrides the file)");
-    cmd->add_option("--lookat", o.lookat, "point looked at x,y,z");
-    cmd->add_option("--up", o.up, "up direction x,y,z");
-    cmd->add_option_function<float>("--fov", [&o](float v) { o.fov = v; o.has_fov = true; }, "vertical field of view, degrees");
-    cmd->add_option_function<float>("--near", [&o](float v) { o.near = v; o.has_near = true; }, "near plane distance");
-    cmd->add_option_function<float>("--far", [&o](float v) { o.far = v; o.has_far = true; }, "far plane distance");
+    add_camera_options(*cmd, o.camera);
     cmd->add_option("--shade", o.shade, "id | depth | normal | phong")->default_val("phong");
     cmd->add_option("--cull", o.cull, "none | back | front (front faces are counter-clockwise)")->default_val("none");
     add_threads_option(*cmd, o.threads);

@@ -1,6 +1,11 @@
 #include "examples/command.h"
 
+#include <algorithm>
 #include <charconv>
+#include <cstdio>
+#include <sstream>
+
+#include "raster/camera_file.h"
 
 namespace tessera::cli {
 
@@ -29,6 +34,60 @@ void parse_size(const std::string& text, const char* flag, int& width, int& heig
         !number(all.substr(x + 1), height))
         throw UsageError(std::string(flag) + " expects WIDTHxHEIGHT with positive integers, got '" +
                          text + "'");
+}
+
+namespace {
+
+// "x,y,z" -> vec3, or a UsageError naming the flag.
+glm::vec3 parse_vec3(const std::string& text, const char* flag) {
+    std::istringstream in(text);
+    glm::vec3 v;
+    char c1 = 0, c2 = 0;
+    std::string rest;
+    if (!(in >> v.x >> c1 >> v.y >> c2 >> v.z) || c1 != ',' || c2 != ',' || (in >> rest))
+        throw UsageError(std::string(flag) + " expects x,y,z, got '" + text + "'");
+    return v;
+}
+
+}  // namespace
+
+void add_camera_options(CLI::App& command, CameraFlags& flags) {
+    command.add_option("--camera", flags.file, "camera file: lines 'eye x y z', 'lookat x y z', 'up x y z', "
+                                               "'fovy_deg f', 'near n', 'far f'");
+    command.add_option("--eye", flags.eye, "camera position x,y,z (overrides the file)");
+    command.add_option("--lookat", flags.lookat, "point looked at x,y,z");
+    command.add_option("--up", flags.up, "up direction x,y,z");
+    command.add_option("--fov", flags.fov, "vertical field of view, degrees");
+    command.add_option("--near", flags.near, "near plane distance");
+    command.add_option("--far", flags.far, "far plane distance");
+}
+
+Camera make_camera(const CameraFlags& flags, int width, int height) {
+    Camera camera;
+    if (!flags.file.empty()) read_camera_file(flags.file, camera);
+    if (!flags.eye.empty()) camera.eye = parse_vec3(flags.eye, "--eye");
+    if (!flags.lookat.empty()) camera.lookat = parse_vec3(flags.lookat, "--lookat");
+    if (!flags.up.empty()) camera.up = parse_vec3(flags.up, "--up");
+    if (flags.fov) camera.fovy_deg = *flags.fov;
+    if (flags.near) camera.near = *flags.near;
+    if (flags.far) camera.far = *flags.far;
+    camera.aspect = float(width) / float(height);
+    validate_camera(camera);
+    return camera;
+}
+
+CullMode parse_cull(const std::string& text) {
+    if (text == "none") return CullMode::none;
+    if (text == "back") return CullMode::back;
+    if (text == "front") return CullMode::front;
+    throw UsageError("--cull expects none, back or front, got '" + text + "'");
+}
+
+void print_frame_times(std::vector<double> ms) {
+    std::sort(ms.begin(), ms.end());
+    const size_t n = ms.size();
+    const double median = n % 2 ? ms[n / 2] : 0.5 * (ms[n / 2 - 1] + ms[n / 2]);
+    std::printf("frame_ms median=%.3f min=%.3f max=%.3f\n", median, ms.front(), ms.back());
 }
 
 void add_threads_option(CLI::App& command, int& threads) {

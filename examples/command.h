@@ -10,9 +10,13 @@
 
 #include <functional>
 #include <memory>
+#include <optional>
 #include <stdexcept>
 #include <string>
 #include <vector>
+
+#include "raster/camera.h"
+#include "raster/triangle_setup.h"
 
 namespace tessera::cli {
 
@@ -39,6 +43,27 @@ const std::vector<Entry>& registered_commands();
 
 // Parses "WxH" ("1920x1080") into positive sizes; throws UsageError naming `flag` otherwise.
 void parse_size(const std::string& text, const char* flag, int& width, int& height);
+
+// The camera flags of `tessera raster`, shared with the llvmpipe peer (bench/peer), which must
+// accept the same command lines: --camera FILE, then --eye/--lookat/--up x,y,z and --fov,
+// --near, --far override what the file says.
+struct CameraFlags {
+    std::string file, eye, lookat, up;
+    std::optional<float> fov, near, far;
+};
+void add_camera_options(CLI::App& command, CameraFlags& flags);
+
+// The camera the flags describe for a width x height image. Throws UsageError for a malformed
+// x,y,z, tessera::Error for an unreadable camera file, std::invalid_argument for a camera that
+// cannot form a view (validate_camera).
+Camera make_camera(const CameraFlags& flags, int width, int height);
+
+// "none" | "back" | "front" (--cull); UsageError otherwise.
+CullMode parse_cull(const std::string& text);
+
+// Prints "frame_ms median=X min=Y max=Z" (the median of an even count: the mean of the middle
+// two), the line `tessera raster --repeat` and the peer print for the benchmark scripts.
+void print_frame_times(std::vector<double> ms);
 
 // Adds the common "--threads N" option (0, the default, means every core) to `command`.
 void add_threads_option(CLI::App& command, int& threads);

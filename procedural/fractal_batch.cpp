@@ -6,23 +6,28 @@
 
 namespace tessera::procedural {
 
-void fbm_batch(const Fractal& f, float scale, size_t n, const float* __restrict x,
-               const float* __restrict y, float* __restrict value, float* __restrict dx,
-               float* __restrict dy) {
+namespace {
+
+// The octave sum of both 2-D forms. The lattice gives an octave's noise at a point already
+// scaled by the octave's frequency (`at`) and how the frequency grows (`lacunarity`);
+// `next_octave` lets a periodic lattice multiply its period with the frequency.
+template <class Lattice>
+void fbm2_batch(const Fractal& f, Lattice lattice, float scale, size_t n, const float* __restrict x,
+                const float* __restrict y, float* __restrict value, float* __restrict dx, float* __restrict dy) {
     for (size_t i = 0; i < n; ++i) value[i] = dx[i] = dy[i] = 0.0f;
     float amplitude = 1.0f, frequency = scale;
     for (int octave = 0; octave < f.octaves; ++octave) {
         const uint32_t key = noise_detail::seed_key(octave_seed(f.seed, octave));
         const float slope = amplitude * frequency;
         for (size_t i = 0; i < n; ++i) {
-            using namespace noise_detail;
-            const Noise2 s = value2(key, axis(x[i] * frequency, kPrimeX), axis(y[i] * frequency, kPrimeY));
+            const Noise2 s = lattice.at(key, x[i] * frequency, y[i] * frequency);
             value[i] += amplitude * s.value;
             dx[i] += slope * s.gradient.x;
             dy[i] += slope * s.gradient.y;
         }
         amplitude *= f.gain;
-        frequency *= f.lacunarity;
+        frequency *= lattice.lacunarity;
+        lattice.next_octave();
     }
     const float norm = 1.0f / fractal_amplitude(f);
     for (size_t i = 0; i < n; ++i) {
@@ -32,33 +37,39 @@ void fbm_batch(const Fractal& f, float scale, size_t n, const float* __restrict 
     }
 }
 
+struct PlainLattice {
+    float lacunarity;
+    TESSERA_NOISE_INLINE Noise2 at(uint32_t key, float x, float y) const {
+        using namespace noise_detail;
+        return value2(key, axis(x, kPrimeX), axis(y, kPrimeY));
+    }
+    void next_octave() {}
+};
+
+// fbm_periodic's lattice: a whole lacunarity, so each octave's period is a whole number of cells.
+struct PeriodicLattice {
+    glm::ivec2 period;
+    int factor;
+    float lacunarity = float(factor);
+    TESSERA_NOISE_INLINE Noise2 at(uint32_t key, float x, float y) const {
+        using namespace noise_detail;
+        return value2(key, periodic_axis(x, period.x, kPrimeX), periodic_axis(y, period.y, kPrimeY));
+    }
+    void next_octave() { period *= factor; }
+};
+
+}  // namespace
+
+void fbm_batch(const Fractal& f, float scale, size_t n, const float* __restrict x,
+               const float* __restrict y, float* __restrict value, float* __restrict dx,
+               float* __restrict dy) {
+    fbm2_batch(f, PlainLattice{f.lacunarity}, scale, n, x, y, value, dx, dy);
+}
+
 void fbm_periodic_batch(const Fractal& f, glm::ivec2 period, float scale, size_t n,
                         const float* __restrict x, const float* __restrict y,
                         float* __restrict value, float* __restrict dx, float* __restrict dy) {
-    for (size_t i = 0; i < n; ++i) value[i] = dx[i] = dy[i] = 0.0f;
-    float amplitude = 1.0f, frequency = scale;
-    const int lacunarity = int(f.lacunarity);
-    for (int octave = 0; octave < f.octaves; ++octave) {
-        const uint32_t key = noise_detail::seed_key(octave_seed(f.seed, octave));
-        const float slope = amplitude * frequency;
-        for (size_t i = 0; i < n; ++i) {
-            using namespace noise_detail;
-            const Noise2 s = value2(key, periodic_axis(x[i] * frequency, period.x, kPrimeX),
-                                    periodic_axis(y[i] * frequency, period.y, kPrimeY));
-            value[i] += amplitude * s.value;
-            dx[i] += slope * s.gradient.x;
-            dy[i] += slope * s.gradient.y;
-        }
-        amplitude *= f.gain;
-        frequency *= float(lacunarity);
-        period *= lacunarity;
-    }
-    const float norm = 1.0f / fractal_amplitude(f);
-    for (size_t i = 0; i < n; ++i) {
-        value[i] *= norm;
-        dx[i] *= norm;
-        dy[i] *= norm;
-    }
+    fbm2_batch(f, PeriodicLattice{period, int(f.lacunarity)}, scale, n, x, y, value, dx, dy);
 }
 
 void fbm_batch(const Fractal& f, float scale, size_t n, const float* __restrict x,

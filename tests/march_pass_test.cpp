@@ -12,11 +12,11 @@
 
 #include "raster/march/background_pass.h"
 #include "raster/march/fog_pass.h"
-#include "raster/march/march_surface.h"
-#include "raster/march/sphere_field.h"
+#include "march_fixtures.h"
 
 using namespace tessera;
 using namespace tessera::march;
+using namespace tessera::test;
 
 namespace {
 
@@ -31,41 +31,16 @@ struct Frame {
     PassTarget all() { return tile(0, 0, W, H); }
 };
 
-Camera test_camera() {
-    Camera c;
-    c.eye = {0.4f, 0.3f, 4.0f};
-    c.lookat = {0.0f, 0.0f, 0.0f};
-    c.aspect = float(W) / float(H);
-    c.near = 0.5f;
-    c.far = 20.0f;
-    return c;
-}
-
-const SphereField kSphere{{0.0f, 0.0f, 0.0f}, 1.0f};
-
 Background sky_background() {
     Background b;
     b.kind = Background::Kind::sky;
     return b;
 }
 
-double sphere_distance(glm::vec3 o, glm::vec3 d) {
-    const glm::dvec3 oc = glm::dvec3(o - kSphere.centre);
-    const double b = glm::dot(glm::dvec3(d), oc);
-    const double disc = b * b - glm::dot(oc, oc) + 1.0;
-    return disc < 0.0 ? INFINITY : -b - std::sqrt(disc);
-}
-
-SurfacePass<SlabSurface<SphereField>> sphere_pass(const RayGenerator& rays, const Background& env) {
-    MarchSettings settings;
-    settings.tolerance = 1e-5f;
-    return {SlabSurface<SphereField>{kSphere, Slab{-1.0f, 1.0f}}, rays, settings, SurfaceLook{}, env};
-}
-
 }  // namespace
 
 TEST(MarchPass, MarchedSphereLandsAtItsAnalyticDepth) {
-    const Camera camera = test_camera();
+    const Camera camera = march_camera(W, H);
     const RayGenerator rays(camera, W, H);
     const Background env = sky_background();
     Frame frame;
@@ -74,7 +49,7 @@ TEST(MarchPass, MarchedSphereLandsAtItsAnalyticDepth) {
     for (int y = 0; y < H; ++y)
         for (int x = 0; x < W; ++x) {
             const glm::vec3 d = rays.direction(x, y);
-            const double t = sphere_distance(camera.eye, d);
+            const double t = unit_sphere_distance(camera.eye, d);
             const float depth = frame.depth[y * W + x];
             if (std::isinf(t) || t > 3.6) {  // missed, or a grazing hit the march may tunnel
                 if (std::isinf(t)) {
@@ -93,7 +68,7 @@ TEST(MarchPass, MarchedSphereLandsAtItsAnalyticDepth) {
 TEST(MarchPass, MarchedSurfaceAndRasterizedPlaneOccludeEachOther) {
     // A plane z = 0.6 already in the depth buffer on the left half ("rasterized", green):
     // the sphere's cap (z up to 1) pokes through it, its flanks (z < 0.6) hide behind it.
-    const Camera camera = test_camera();
+    const Camera camera = march_camera(W, H);
     const RayGenerator rays(camera, W, H);
     const Background env = sky_background();
     Frame frame;
@@ -110,7 +85,7 @@ TEST(MarchPass, MarchedSurfaceAndRasterizedPlaneOccludeEachOther) {
     for (int y = 0; y < H; ++y)
         for (int x = 0; x < W / 2; ++x) {
             const glm::vec3 d = rays.direction(x, y);
-            const double ts = sphere_distance(camera.eye, d);
+            const double ts = unit_sphere_distance(camera.eye, d);
             const double tp = (0.6 - camera.eye.z) / d.z;
             if (std::fabs(ts - tp) < 0.02 || (!std::isinf(ts) && ts > 3.6)) continue;  // near ties, grazing
             const bool sphere_wins = ts < tp;
@@ -122,7 +97,7 @@ TEST(MarchPass, MarchedSurfaceAndRasterizedPlaneOccludeEachOther) {
 }
 
 TEST(MarchPass, TilesGiveTheSameBytesAsOneRectangle) {
-    const RayGenerator rays(test_camera(), W, H);
+    const RayGenerator rays(march_camera(W, H), W, H);
     const Background env = sky_background();
     Fog fog;
     fog.density = {0.05f, 0.07f, 0.09f};
@@ -148,7 +123,7 @@ TEST(MarchPass, TilesGiveTheSameBytesAsOneRectangle) {
 }
 
 TEST(MarchPass, BackgroundFillsEmptyPixelsAndFogUsesTheDepthDistance) {
-    const Camera camera = test_camera();
+    const Camera camera = march_camera(W, H);
     const RayGenerator rays(camera, W, H);
     const Background env = sky_background();
     Frame frame;
@@ -165,7 +140,7 @@ TEST(MarchPass, BackgroundFillsEmptyPixelsAndFogUsesTheDepthDistance) {
             const glm::vec3 d = rays.direction(x, y);
             const float depth = frame.depth[y * W + x];
             const glm::vec3 before = depth < 1.0f ? glm::vec3(shaded.colour[y * W + x]) : background_radiance(env, d);
-            const float distance = depth < 1.0f ? float(sphere_distance(camera.eye, d)) : INFINITY;
+            const float distance = depth < 1.0f ? float(unit_sphere_distance(camera.eye, d)) : INFINITY;
             if (depth < 1.0f && std::isinf(distance)) continue;
             const glm::vec3 expected = fog.apply(before, camera.eye, d, distance);
             const glm::vec3 got(frame.colour[y * W + x]);
@@ -175,7 +150,7 @@ TEST(MarchPass, BackgroundFillsEmptyPixelsAndFogUsesTheDepthDistance) {
 }
 
 TEST(MarchPass, ASurfaceCutByTheNearPlaneShowsAtTheNearPlane) {
-    Camera camera = test_camera();
+    Camera camera = march_camera(W, H);
     camera.eye = {0.0f, 0.0f, 1.2f};  // the near plane (0.5 ahead) lies inside the sphere
     const RayGenerator rays(camera, W, H);
     const Background env = sky_background();
@@ -187,19 +162,19 @@ TEST(MarchPass, ASurfaceCutByTheNearPlaneShowsAtTheNearPlane) {
 }
 
 TEST(MarchPass, BadPassParametersAreRefused) {
-    const RayGenerator rays(test_camera(), W, H);
+    const RayGenerator rays(march_camera(W, H), W, H);
     const Background env = sky_background();
     MarchSettings zero_steps;
     zero_steps.steps = 0;
     using Pass = SurfacePass<SlabSurface<SphereField>>;
-    EXPECT_THROW(Pass(SlabSurface<SphereField>{kSphere, Slab{}}, rays, zero_steps, SurfaceLook{}, env),
+    EXPECT_THROW(Pass(SlabSurface<SphereField>{kUnitSphere, Slab{}}, rays, zero_steps, SurfaceLook{}, env),
                  std::invalid_argument);
     SurfaceLook look;
     look.normals.method = NormalMethod::central_differences;
     look.normals.h = std::nanf("");
-    EXPECT_THROW(Pass(SlabSurface<SphereField>{kSphere, Slab{}}, rays, MarchSettings{}, look, env),
+    EXPECT_THROW(Pass(SlabSurface<SphereField>{kUnitSphere, Slab{}}, rays, MarchSettings{}, look, env),
                  std::invalid_argument);
-    EXPECT_THROW(Pass(SlabSurface<SphereField>{kSphere, Slab{1.0f, std::nanf("")}}, rays, MarchSettings{},
+    EXPECT_THROW(Pass(SlabSurface<SphereField>{kUnitSphere, Slab{1.0f, std::nanf("")}}, rays, MarchSettings{},
                       SurfaceLook{}, env),
                  std::invalid_argument);
     Fog fog;

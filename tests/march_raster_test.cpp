@@ -11,30 +11,18 @@
 #include <vector>
 
 #include "raster/march/fog_pass.h"
-#include "raster/march/march_surface.h"
-#include "raster/march/sphere_field.h"
-#include "raster/march/surface_pass.h"
 #include "raster/march/tile_passes.h"
 #include "raster/rasterizer.h"
+#include "march_fixtures.h"
 
 using namespace tessera;
 using namespace tessera::march;
+using namespace tessera::test;
 
 namespace {
 
 constexpr int W = 96, H = 64;
 const glm::vec4 kGreen(0.0f, 1.0f, 0.0f, 1.0f);
-const SphereField kSphere{{0.0f, 0.0f, 0.0f}, 1.0f};
-
-Camera camera() {
-    Camera c;
-    c.eye = {0.4f, 0.3f, 4.0f};
-    c.lookat = {0.0f, 0.0f, 0.0f};
-    c.aspect = float(W) / float(H);
-    c.near = 0.5f;
-    c.far = 20.0f;
-    return c;
-}
 
 // A quad in the plane z = 0.9 over x in [-4, 0]: in front of most of the sphere, behind
 // the cap that reaches z = 1.
@@ -58,13 +46,10 @@ struct Result {
 };
 
 Result render(int tile_size, const Fog* fog) {
-    const Camera cam = camera();
+    const Camera cam = march_camera(W, H);
     const RayGenerator rays(cam, W, H);
-    Background background;
-    MarchSettings settings;
-    settings.tolerance = 1e-5f;
-    const SurfacePass<SlabSurface<SphereField>> sphere(SlabSurface<SphereField>{kSphere, Slab{-1.0f, 1.0f}}, rays,
-                                                       settings, SurfaceLook{}, background);
+    const Background background{};
+    const auto sphere = sphere_pass(rays, background);
     std::vector<TilePass> passes{paint, tile_pass(sphere)};
     std::optional<FogPass> fog_pass;
     if (fog) passes.push_back(tile_pass(fog_pass.emplace(rays, *fog)));
@@ -76,24 +61,17 @@ Result render(int tile_size, const Fog* fog) {
     return r;
 }
 
-double sphere_distance(glm::vec3 o, glm::vec3 d) {
-    const glm::dvec3 oc = glm::dvec3(o - kSphere.centre);
-    const double b = glm::dot(glm::dvec3(d), oc);
-    const double disc = b * b - glm::dot(oc, oc) + 1.0;
-    return disc < 0.0 ? INFINITY : -b - std::sqrt(disc);
-}
-
 }  // namespace
 
 TEST(MarchRaster, MarchedSphereAndRasterizedQuadOccludeEachOther) {
     const Result r = render(64, nullptr);
-    const Camera cam = camera();
+    const Camera cam = march_camera(W, H);
     const RayGenerator rays(cam, W, H);
     int sphere_wins = 0, quad_wins = 0;
     for (int y = 0; y < H; ++y)
         for (int x = 0; x < W; ++x) {
             const glm::vec3 d = rays.direction(x, y);
-            const double ts = sphere_distance(cam.eye, d);
+            const double ts = unit_sphere_distance(cam.eye, d);
             const double tq = (0.9 - cam.eye.z) / d.z;
             const glm::vec3 hit_quad = cam.eye + d * float(tq);
             const bool on_quad = hit_quad.x < -0.01f;  // clear of the quad's edge x = 0
@@ -122,7 +100,7 @@ TEST(MarchRaster, FogCoversTrianglesAndMarchedSurfacesAlike) {
     fog.colour = {0.2f, 0.3f, 0.4f};
     const Result clear = render(64, nullptr);
     const Result foggy = render(64, &fog);
-    const Camera cam = camera();
+    const Camera cam = march_camera(W, H);
     const RayGenerator rays(cam, W, H);
     for (int y = 0; y < H; y += 3)
         for (int x = 0; x < W; x += 3) {

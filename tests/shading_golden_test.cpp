@@ -4,10 +4,6 @@
 // these pin down shading alone.
 #include <gtest/gtest.h>
 
-#include <glm/gtc/constants.hpp>
-
-#include "raster/geometry/param_surface.h"
-#include "raster/geometry/surfaces.h"
 #include "shading_harness.h"
 #include "shading_scenes.h"
 
@@ -49,20 +45,7 @@ TEST(ShadingGolden, NormalMapped) {
     expect_golden(s, "normalmap");
 }
 
-TEST(ShadingGolden, TransparentOverOpaque) {
-    Scene s = base_scene(coloured(ShadingModel::phong));
-    Material glass = coloured(ShadingModel::phong);
-    glass.kd = glass.ka = {0.2f, 0.5f, 0.9f};
-    glass.opacity = 0.4f;
-    s.materials.push_back(glass);
-    // A thin torus in front of the sphere: its near and far sides both blend, in order.
-    s.objects.push_back(Object{"ring", std::make_shared<const Mesh>(tessellate(torus_surface(1.2f, 0.15f), 32, 8)),
-                               1, {}, {}});
-    s.objects[1].transform.axis = {1, 0, 0};
-    s.objects[1].transform.angle = 0.5f;
-    s.objects[1].transform.translation = {0, 0, 0.6f};
-    expect_golden(s, "transparent");
-}
+TEST(ShadingGolden, TransparentOverOpaque) { expect_golden(transparent_scene(), "transparent"); }
 
 TEST(ShadingGolden, SkyBackground) {
     Scene s = base_scene(coloured(ShadingModel::phong));

@@ -1,9 +1,12 @@
 // Test support for the shading tests: a brute-force visibility pass (one ray per pixel centre
 // against every triangle, nearest hit wins) so that the shading goldens do not depend on the
-// rasterizer, and golden-image comparison with a tolerance and a diff image on failure.
+// rasterizer, the same scenes through the real frame path (FrameRenderer) to compare with it,
+// and image comparison with a tolerance (golden images: a diff image on failure).
 #pragma once
 #include <glm/glm.hpp>
 
+#include <algorithm>
+#include <cstdint>
 #include <cstdlib>
 #include <filesystem>
 #include <string>
@@ -11,7 +14,9 @@
 
 #include "raster/image_io.h"
 #include "raster/output/frame.h"
+#include "raster/render/frame_renderer.h"
 #include "raster/scene/scene.h"
+#include "raster/scene_file/scene_build.h"
 #include "raster/shade/frame_shading.h"
 
 namespace tessera::test {
@@ -97,6 +102,32 @@ inline Frame render(const Scene& scene, int width, int height) {
     return frame;
 }
 
+// The scene through the frame path the `tessera render` command uses: tile rasterizer,
+// shading, transparent triangles blended per tile; time 0, no shadows.
+inline Frame rasterize(const Scene& scene, int width, int height) {
+    AnimatedScene still = still_scene(scene);
+    FrameRenderer renderer(still, width, height, RendererKind::raster, ShadowMode::none);
+    return renderer.render(0.0f);
+}
+
+// How many pixels of two equally sized 8-bit RGBA images differ by more than `tolerance` (of
+// 255) in some channel. With `diff`: an image of the colour differences x8, for people.
+inline size_t count_differing(const std::vector<uint8_t>& a, const std::vector<uint8_t>& b, int tolerance,
+                              std::vector<uint8_t>* diff = nullptr) {
+    if (diff) diff->assign(a.size(), 255);
+    size_t bad = 0;
+    for (size_t i = 0; i < a.size() / 4; ++i) {
+        bool pixel_bad = false;
+        for (int c = 0; c < 4; ++c) {
+            const int d = std::abs(int(a[4 * i + size_t(c)]) - int(b[4 * i + size_t(c)]));
+            pixel_bad |= d > tolerance;
+            if (diff && c < 3) (*diff)[4 * i + size_t(c)] = uint8_t(std::min(255, d * 8));
+        }
+        bad += pixel_bad;
+    }
+    return bad;
+}
+
 inline std::filesystem::path golden_path(const std::string& name) {
     return std::filesystem::path(TESSERA_TEST_DATA) / "golden" / (name + ".png");
 }
@@ -123,18 +154,10 @@ inline bool matches_golden(const Frame& frame, const std::string& name, std::str
         why = "golden " + name + " has a different size or channel count";
         return false;
     }
-    std::vector<uint8_t> diff(actual.size(), 255);
-    size_t bad = 0;
-    for (size_t i = 0; i < actual.size() / 4; ++i) {
-        bool pixel_bad = false;
-        for (int c = 0; c < 4; ++c) {
-            const int g = int(golden.pixels[4 * i + size_t(c)] * 255.0f + 0.5f);
-            const int d = std::abs(g - int(actual[4 * i + size_t(c)]));
-            pixel_bad |= d > tolerance;
-            if (c < 3) diff[4 * i + size_t(c)] = uint8_t(std::min(255, d * 8));
-        }
-        bad += pixel_bad;
-    }
+    std::vector<uint8_t> expected(golden.pixels.size());
+    for (size_t i = 0; i < expected.size(); ++i) expected[i] = uint8_t(int(golden.pixels[i] * 255.0f + 0.5f));
+    std::vector<uint8_t> diff;
+    const size_t bad = count_differing(expected, actual, tolerance, &diff);
     if (double(bad) <= max_bad_fraction * double(actual.size() / 4)) return true;
     const auto dir = std::filesystem::temp_directory_path() / "tessera_golden_failures";
     std::filesystem::create_directories(dir);

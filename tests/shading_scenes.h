@@ -1,5 +1,5 @@
 // The small scenes of the shading goldens, shared by the golden tests (brute-force visibility)
-// and the rasterizer integration tests (the same scenes through the tile rasterizer).
+// and the frame-path tests (the same scenes through FrameRenderer's tile rasterizer).
 #pragma once
 #include <glm/gtc/constants.hpp>
 
@@ -37,6 +37,22 @@ inline Material coloured(ShadingModel model) {
     m.ks = glm::vec3(0.6f);
     m.shine = 40.0f;
     return m;
+}
+
+// The Phong sphere with a thin glass torus in front of it: the torus's near and far sides
+// both blend over the sphere, in submission order.
+inline Scene transparent_scene() {
+    Scene s = base_scene(coloured(ShadingModel::phong));
+    Material glass = coloured(ShadingModel::phong);
+    glass.kd = glass.ka = {0.2f, 0.5f, 0.9f};
+    glass.opacity = 0.4f;
+    s.materials.push_back(glass);
+    s.objects.push_back(Object{"ring", std::make_shared<const Mesh>(tessellate(torus_surface(1.2f, 0.15f), 32, 8)),
+                               1, {}, {}});
+    s.objects[1].transform.axis = {1, 0, 0};
+    s.objects[1].transform.angle = 0.5f;
+    s.objects[1].transform.translation = {0, 0, 0.6f};
+    return s;
 }
 
 inline Texture checker_texture() {

@@ -3,18 +3,14 @@
 // can be timed on the same work (--repeat) and compared pixel for pixel (--out-id).
 #include <CLI/CLI.hpp>
 
-#include <optional>
-
 #include <algorithm>
 #include <chrono>
 #include <cstdio>
 #include <cstdlib>
-#include <sstream>
 
 #include "bench/peer/gl_frame.h"
 #include "bench/peer/osmesa_context.h"
 #include "examples/command.h"
-#include "raster/camera_file.h"
 #include "raster/image_io.h"
 #include "raster/obj_loader.h"
 #include "raster/viewport.h"
@@ -26,55 +22,14 @@ using namespace tessera;
 using namespace tessera::peer;
 
 struct Options {
-    std::string mesh, camera, size = "1920x1080";
-    std::string eye, lookat, up;
-    std::optional<float> fov, near, far;
+    std::string mesh, size = "1920x1080";
+    cli::CameraFlags camera;
     std::string shade = "phong", cull = "none";
     int threads = 0;
     std::string out_color, out_id, out_depth;
     int repeat = 0;
     bool stats = false;
 };
-
-// "x,y,z" -> vec3, or a UsageError naming the flag (as `tessera raster` parses it).
-glm::vec3 parse_vec3(const std::string& text, const char* flag) {
-    std::istringstream in(text);
-    glm::vec3 v;
-    char c1 = 0, c2 = 0;
-    std::string rest;
-    if (!(in >> v.x >> c1 >> v.y >> c2 >> v.z) || c1 != ',' || c2 != ',' || (in >> rest))
-        throw cli::UsageError(std::string(flag) + " expects x,y,z, got '" + text + "'");
-    return v;
-}
-
-CullMode parse_cull(const std::string& text) {
-    if (text == "none") return CullMode::none;
-    if (text == "back") return CullMode::back;
-    if (text == "front") return CullMode::front;
-    throw cli::UsageError("--cull expects none, back or front, got '" + text + "'");
-}
-
-Camera make_camera(const Options& o, int width, int height) {
-    Camera camera;
-    if (!o.camera.empty()) read_camera_file(o.camera, camera);
-    if (!o.eye.empty()) camera.eye = parse_vec3(o.eye, "--eye");
-    if (!o.lookat.empty()) camera.lookat = parse_vec3(o.lookat, "--lookat");
-    if (!o.up.empty()) camera.up = parse_vec3(o.up, "--up");
-    if (o.fov) camera.fovy_deg = *o.fov;
-    if (o.near) camera.near = *o.near;
-    if (o.far) camera.far = *o.far;
-    camera.aspect = float(width) / float(height);
-    validate_camera(camera);
-    return camera;
-}
-
-// Median of the frame times (the mean of the middle two for an even count), min and max.
-void print_frame_times(std::vector<double> ms) {
-    std::sort(ms.begin(), ms.end());
-    const size_t n = ms.size();
-    const double median = n % 2 ? ms[n / 2] : 0.5 * (ms[n / 2 - 1] + ms[n / 2]);
-    std::printf("frame_ms median=%.3f min=%.3f max=%.3f\n", median, ms.front(), ms.back());
-}
 
 int run(const Options& o) {
     int width = 0, height = 0;
@@ -84,11 +39,11 @@ int run(const Options& o) {
     frame_options.width = width;
     frame_options.height = height;
     frame_options.shade = parse_shade_mode(o.shade);
-    frame_options.cull = parse_cull(o.cull);
+    frame_options.cull = cli::parse_cull(o.cull);
     frame_options.triangle_ids = !o.out_id.empty();
     if (!o.out_color.empty() && !image_format_supported(o.out_color))
         throw cli::UsageError("--out-color: no image writer for '" + o.out_color + "'");
-    const Camera camera = make_camera(o, width, height);
+    const Camera camera = cli::make_camera(o.camera, width, height);
     const Mesh mesh = load_obj(o.mesh);
 
     OsMesaContext context(o.threads);  // sets LP_NUM_THREADS before llvmpipe starts
@@ -105,7 +60,7 @@ int run(const Options& o) {
             std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start)
                 .count());
     }
-    if (!frame_ms.empty()) print_frame_times(frame_ms);
+    if (!frame_ms.empty()) cli::print_frame_times(frame_ms);
     if (o.stats)
         std::printf("peer: %s, OpenGL %s (%s profile), LP_NUM_THREADS=%s, %zu triangles, %dx%d\n",
                     context.renderer().c_str(), context.version().c_str(),
@@ -139,15 +94,8 @@ int main(int argc, char** argv) {
                  "tessera-llvmpipe"};
     app.add_option("--mesh", o.mesh, "OBJ file (faces fan-triangulated; triangle id = order in file)")
         ->required();
-    app.add_option("--camera", o.camera, "camera file: lines 'eye x y z', 'lookat x y z', 'up x y z', "
-                                         "'fovy_deg f', 'near n', 'far f'");
     app.add_option("--size", o.size, "image size WIDTHxHEIGHT")->default_val("1920x1080");
-    app.add_option("--eye", o.eye, "camera position x,y,z (overrides the file)");
-    app.add_option("--lookat", o.lookat, "point looked at x,y,z");
-    app.add_option("--up", o.up, "up direction x,y,z");
-    app.add_option("--fov", o.fov, "vertical field of view, degrees");
-    app.add_option("--near", o.near, "near plane distance");
-    app.add_option("--far", o.far, "far plane distance");
+    tessera::cli::add_camera_options(app, o.camera);
     app.add_option("--shade", o.shade, "id | depth | normal | phong")->default_val("phong");
     app.add_option("--cull", o.cull, "none | back | front (front faces are counter-clockwise)")
         ->default_val("none");

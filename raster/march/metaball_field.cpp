@@ -20,6 +20,15 @@ KernelSample<float> sample(const Kernel& kernel, glm::vec3 q, float inv_r2) {
     return kernel.at((q.x * q.x + q.y * q.y + q.z * q.z) * inv_r2);
 }
 
+// The same through the style's kernel, picked at run time.
+KernelSample<float> sample(MetaballKernel kind, const BlinnKernel& blinn, glm::vec3 q, float inv_r2) {
+    switch (kind) {
+    case MetaballKernel::wyvill: return sample(WyvillKernel{}, q, inv_r2);
+    case MetaballKernel::perlin: return sample(PerlinKernel{}, q, inv_r2);
+    default: return sample(blinn, q, inv_r2);
+    }
+}
+
 }  // namespace
 
 MetaballField::MetaballField(const std::vector<Metaball>& balls, const MetaballStyle& style)
@@ -52,12 +61,7 @@ float MetaballField::value(glm::vec3 p) const {
     float sum = 0.0f;
     for (size_t i = 0; i < cx_.size(); ++i) {
         const glm::vec3 q = p - glm::vec3(cx_[i], cy_[i], cz_[i]);
-        KernelSample<float> k;
-        switch (style_.kernel) {
-        case MetaballKernel::wyvill: k = sample(WyvillKernel{}, q, inv_r2_[i]); break;
-        case MetaballKernel::perlin: k = sample(PerlinKernel{}, q, inv_r2_[i]); break;
-        default: k = sample(blinn_, q, inv_r2_[i]); break;
-        }
+        const KernelSample<float> k = sample(style_.kernel, blinn_, q, inv_r2_[i]);
         sum += weight_[i] * k.value;
     }
     return sum - style_.threshold;
@@ -67,12 +71,7 @@ glm::vec3 MetaballField::gradient(glm::vec3 p) const {
     glm::vec3 g(0.0f);
     for (size_t i = 0; i < cx_.size(); ++i) {
         const glm::vec3 q = p - glm::vec3(cx_[i], cy_[i], cz_[i]);
-        KernelSample<float> k;
-        switch (style_.kernel) {
-        case MetaballKernel::wyvill: k = sample(WyvillKernel{}, q, inv_r2_[i]); break;
-        case MetaballKernel::perlin: k = sample(PerlinKernel{}, q, inv_r2_[i]); break;
-        default: k = sample(blinn_, q, inv_r2_[i]); break;
-        }
+        const KernelSample<float> k = sample(style_.kernel, blinn_, q, inv_r2_[i]);
         g += (weight_[i] * k.d_ds * 2.0f * inv_r2_[i]) * q;
     }
     return g;

@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <map>
 #include <memory>
+#include <utility>
 
 #include "procedural/normal_map.h"
 #include "procedural/reaction_diffusion.h"
@@ -172,6 +173,13 @@ Camera camera_at(const CameraSpec& spec, float time, float aspect) {
 void AnimatedScene::set_time(float time, float aspect) {
     scene.camera = camera_at(spec.camera, time, aspect);
     scene.animate(time);
+}
+
+AnimatedScene still_scene(Scene scene) {
+    AnimatedScene out;
+    out.spec.camera.camera = scene.camera;
+    out.scene = std::move(scene);
+    return out;
 }
 
 AnimatedScene build_scene(SceneSpec spec) {

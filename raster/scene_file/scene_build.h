@@ -16,6 +16,11 @@ struct AnimatedScene {
     void set_time(float time, float aspect);
 };
 
+// A Scene built in code as an AnimatedScene (what FrameRenderer renders): its camera becomes
+// the camera spec with no keys and no orbit, so set_time(t, aspect) keeps the pose, sets the
+// aspect and runs the objects' own animate hooks, if any. No compute passes.
+AnimatedScene still_scene(Scene scene);
+
 // Throws SceneFileError for a texture or OBJ file that cannot be read (naming the scene file
 // and the texture or object), std::invalid_argument for values the generators reject.
 AnimatedScene build_scene(SceneSpec spec);
