@@ -7,11 +7,6 @@ PRESET ?= release
 JOBS   ?= $(shell nproc)
 FUZZ_SECONDS ?= 15
 FUZZ_SEED ?= 0
-# Known failures of the sanitize build (RelWithDebInfo, -O2), both exact float comparisons
-# that hold at -O3 and break where gcc contracts a*b+c into FMAs differently (C++ defaults to
-# -ffp-contract=fast): the tile rasterizer against its scalar reference on a sphere, and a
-# 1x1 texture sampled as exactly 0.4. Reported in issue 10's closing note; remove when fixed.
-SANITIZE_EXCLUDE ?= RasterPipeline.DeterministicAcrossThreadsAndTileSizes|ShadingTexture.MipChainHandlesNonPowerOfTwoAndOneByOne
 # ThreadSanitizer checks the threads tessera synchronises itself: the background frame writer
 # (std::thread, mutex, condition variable). The oneTBB stages are left out: Debian's libtbb
 # is not built with -fsanitize=thread, so TSan cannot see the synchronisation inside it
@@ -50,7 +45,7 @@ peer: build
 sanitize: deps
 	cmake --preset sanitize
 	cmake --build --preset sanitize -j $(JOBS)
-	ctest --preset sanitize -j $(JOBS) -E '$(SANITIZE_EXCLUDE)'
+	ctest --preset sanitize -j $(JOBS)
 
 tsan: deps
 	cmake --preset tsan
