@@ -7,12 +7,12 @@ PRESET ?= release
 JOBS   ?= $(shell nproc)
 FUZZ_SECONDS ?= 15
 FUZZ_SEED ?= 0
-# ThreadSanitizer checks the threads tessera synchronises itself: the background frame writer
+# ThreadSanitizer checks the threads tessera synchronises itself: the background frame writers
 # (std::thread, mutex, condition variable). The oneTBB stages are left out: Debian's libtbb
 # is not built with -fsanitize=thread, so TSan cannot see the synchronisation inside it
 # (task spawn, waits, its small-object pool) and reports every parallel_for as a race.
 # Checking them needs oneTBB built from source with TSan (see README, "Sanitizers").
-TSAN_TESTS ?= FrameWriter
+TSAN_TESTS ?= FrameWriter|FrameStream
 
 .PHONY: all deps build test demo bench bench-report peer sanitize tsan fuzz fuzz-run clean
 
