@@ -138,24 +138,16 @@ void Rasterizer::render(const Mesh& mesh, const glm::mat4& view_projection, cons
 
             // Visibility out: stamp-swizzled tile to row-major frame.
             const int w = rect.x1 - rect.x0, h = rect.y1 - rect.y0;
-            uint64_t visible = 0;
-            for (int y = 0; y < h; ++y) {
-                const size_t row = size_t(rect.y0 + y) * viewport.width + rect.x0;
-                int x = 0;
-                for (; x + simd::kStampW <= w; x += simd::kStampW) {  // one stamp row at a time
-                    const size_t i = buffers.index(x, y);
-                    std::memcpy(&visibility.triangle[row + x], &buffers.triangle[i], simd::kStampW * sizeof(uint32_t));
-                    std::memcpy(&visibility.depth[row + x], &buffers.depth[i], simd::kStampW * sizeof(float));
-                }
-                for (; x < w; ++x) {
-                    const size_t i = buffers.index(x, y);
-                    visibility.triangle[row + x] = buffers.triangle[i];
-                    visibility.depth[row + x] = buffers.depth[i];
-                }
-                if (stats)
-                    for (int x = 0; x < w; ++x) visible += visibility.triangle[row + x] != kNoTriangle;
+            const size_t origin = size_t(rect.y0) * viewport.width + rect.x0;
+            buffers.write(w, h, visibility.triangle.data() + origin, visibility.depth.data() + origin,
+                          size_t(viewport.width));
+            if (stats) {
+                uint64_t visible = 0;
+                for (int y = 0; y < h; ++y)
+                    for (int x = 0; x < w; ++x)
+                        visible += visibility.triangle[origin + size_t(y) * viewport.width + x] != kNoTriangle;
+                visible_pixels += visible;
             }
-            if (stats) visible_pixels += visible;
             if (!run_passes) continue;
 
             const auto pass_start = Clock::now();
@@ -166,7 +158,6 @@ void Rasterizer::render(const Mesh& mesh, const glm::mat4& view_projection, cons
             context.viewport = &viewport;
             context.mesh = &mesh;
             context.clip = &s.vertices;
-            const size_t origin = size_t(rect.y0) * viewport.width + rect.x0;
             context.triangle = visibility.triangle.data() + origin;
             context.depth = visibility.depth.data() + origin;
             context.stride = size_t(viewport.width);

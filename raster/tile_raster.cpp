@@ -162,6 +162,30 @@ void TileBuffers::clear(int tile_size) {
     }
 }
 
+void TileBuffers::write(int width, int height, uint32_t* triangle_out, float* depth_out,
+                        size_t stride) const {
+    // kStampH stamps side by side are kLanes pixels wide: the unit store_stamp_rows moves.
+    const int group = kLanes;
+    const int whole = width / group * group;
+    const uint32_t* depth_bits = reinterpret_cast<const uint32_t*>(depth.data());
+    uint32_t* depth_out_bits = reinterpret_cast<uint32_t*>(depth_out);
+    for (int y = 0; y < height; y += kStampH) {
+        const int rows = std::min(kStampH, height - y);
+        const size_t row = size_t(y) * stride;
+        for (int x = 0; x < whole; x += group) {
+            const size_t i = index(x, y);
+            simd::store_stamp_rows(triangle.data() + i, triangle_out + row + x, stride, rows);
+            simd::store_stamp_rows(depth_bits + i, depth_out_bits + row + x, stride, rows);
+        }
+        for (int r = 0; r < rows; ++r)
+            for (int x = whole; x < width; ++x) {
+                const size_t i = index(x, y + r);
+                triangle_out[row + size_t(r) * stride + x] = triangle[i];
+                depth_out[row + size_t(r) * stride + x] = depth[i];
+            }
+    }
+}
+
 void rasterize_opaque(const TriangleSetup& t, const TileRect& tile, TileBuffers& buffers) {
     float* depth = buffers.depth.data();
     uint32_t* ids = buffers.triangle.data();

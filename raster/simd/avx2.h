@@ -2,6 +2,7 @@
 #pragma once
 #include <immintrin.h>
 
+#include <cstddef>
 #include <cstdint>
 
 namespace tessera::simd {
@@ -79,6 +80,17 @@ inline void store_masked(float* p, vmask m, vfloat a) { select(m, a, vfloat::loa
 inline void store_masked(uint32_t* p, vmask m, vint a) {
     int32_t* q = reinterpret_cast<int32_t*>(p);
     select(m, a, vint::load(q)).store(q);
+}
+
+// Stamp layout to rows (simd.h): `stamps` holds kStampH horizontally adjacent 4x2 stamps
+// (aligned, 16 values); row r of the 8 x 2 pixels they cover is written to dst + r * stride
+// (unaligned), for r < rows. Row r of a stamp is its 128-bit half r.
+inline void store_stamp_rows(const uint32_t* stamps, uint32_t* dst, size_t stride, int rows) {
+    const __m256i a = _mm256_load_si256(reinterpret_cast<const __m256i*>(stamps));
+    const __m256i b = _mm256_load_si256(reinterpret_cast<const __m256i*>(stamps + 8));
+    _mm256_storeu_si256(reinterpret_cast<__m256i*>(dst), _mm256_permute2x128_si256(a, b, 0x20));
+    if (rows > 1)
+        _mm256_storeu_si256(reinterpret_cast<__m256i*>(dst + stride), _mm256_permute2x128_si256(a, b, 0x31));
 }
 
 }  // namespace tessera::simd
