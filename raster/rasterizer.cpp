@@ -129,7 +129,7 @@ void Rasterizer::render(const Mesh& mesh, const glm::mat4& view_projection, cons
                                 std::min((ty + 1) * grid.size, grid.height)};
             TraceScope trace("raster tile", "tile", rect.x0, rect.y0);
             TileBuffers& buffers = scratch.buffers;
-            buffers.clear(grid.size);
+            if (buffers.size != grid.size) buffers.clear(grid.size);  // else flush() cleared them
             for (const ChunkBins& chunk : s.chunks)
                 for (const TriangleSetup* e = chunk.begin(tile); e != chunk.end(tile); ++e) {
                     const TriangleSetup& t = *e;
@@ -139,7 +139,7 @@ void Rasterizer::render(const Mesh& mesh, const glm::mat4& view_projection, cons
             // Visibility out: stamp-swizzled tile to row-major frame.
             const int w = rect.x1 - rect.x0, h = rect.y1 - rect.y0;
             const size_t origin = size_t(rect.y0) * viewport.width + rect.x0;
-            buffers.write(w, h, visibility.triangle.data() + origin, visibility.depth.data() + origin,
+            buffers.flush(w, h, visibility.triangle.data() + origin, visibility.depth.data() + origin,
                           size_t(viewport.width));
             if (stats) {
                 uint64_t visible = 0;

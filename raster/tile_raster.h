@@ -27,9 +27,10 @@ struct TileBuffers {
 
     void clear(int tile_size);  // depth 1.0, no triangle
     // Copies the tile's pixels [0, width) x [0, height) to row-major triangle / depth arrays
-    // with `stride` elements per row (pointing at the tile's first pixel): whole groups of
-    // kStampH stamps as vector rows (simd::store_stamp_rows), the right edge pixel by pixel.
-    void write(int width, int height, uint32_t* triangle_out, float* depth_out, size_t stride) const;
+    // with `stride` elements per row (pointing at the tile's first pixel), whole groups of
+    // kStampH stamps as vector rows (simd::store_stamp_rows), and leaves the buffers cleared
+    // for the next tile of the same size.
+    void flush(int width, int height, uint32_t* triangle_out, float* depth_out, size_t stride);
     // Index of tile-local pixel (x, y) in the arrays.
     size_t index(int x, int y) const {
         const int stamp = (y / simd::kStampH) * (size / simd::kStampW) + x / simd::kStampW;
