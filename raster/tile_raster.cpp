@@ -17,6 +17,7 @@ using simd::vint;
 using simd::vmask;
 
 constexpr int kBlock = 16;  // block edge for big triangles (int32-exact up to 64, fixed_point.h)
+constexpr int kTinyExtent = 32;  // pixels: a small triangle's region under this is visited branch-free
 
 // One edge function in the lanes of a stamp: F at the stamp's corner pixel (scalar), the lane
 // offsets F(corner + lane) - F(corner), and the steps between stamps.
@@ -36,7 +37,13 @@ EdgeLanes accepted_edge() { return {0, 0, 0, vint(0)}; }
 // Visits the stamps with corners (sx, sy), sx0 <= sx <= sx1, sy0 <= sy <= sy1 (stamp-aligned,
 // frame coordinates): coverage from the three edges, depth from the plane. sink(index of the
 // stamp in the tile buffers, corner x, corner y, coverage, depth).
-template <class Sink>
+//
+// kBranchless: the sink also gets stamps with no coverage (its masked stores then write
+// nothing), and rows are not left early. For the few stamps of a small region this is
+// faster than predicting "any lane covered" and the row exits, which mispredict often
+// (sphere grid at 1080p, 1 thread, CPU time per frame: 16k triangles 3.4 -> 2.4 ms, 100k
+// 8.2 -> 5.9 ms; regions up to 16 pixels gave 3.2 and 6.0 ms, up to 64 the same as 32).
+template <bool kBranchless, class Sink>
 inline void traverse_stamps(const DepthPlane& plane, const EdgeLanes (&e)[3], int sx0, int sy0, int sx1,
                             int sy1, const TileRect& tile, int tile_size, Sink&& sink) {
     const vfloat lane_x = simd::to_float(simd::stamp_x());
@@ -60,7 +67,7 @@ inline void traverse_stamps(const DepthPlane& plane, const EdgeLanes (&e)[3], in
         for (int sx = sx0; sx <= sx1; sx += kStampW, index += kLanes, fx += float(kStampW)) {
             // Inside where all three F >= 0: one sign test on their bitwise OR.
             const vmask covered = (f0 | f1 | f2) >= zero;
-            if (simd::any(covered)) {
+            if (kBranchless || simd::any(covered)) {
                 vfloat z = simd::fma(a, vfloat(fx) + lane_x, z_row);
                 z = simd::min(simd::max(z, vfloat(0.0f)), vfloat(1.0f));
                 sink(index, sx, sy, covered, z);
@@ -117,7 +124,10 @@ inline void traverse(const TriangleSetup& t, const TileRect& tile, int tile_size
         EdgeLanes lanes[3];
         for (int i = 0; i < 3; ++i)
             lanes[i] = edge_lanes(int32_t(t.f[i]) + t.dx[i] * (sy0 - t.miny) - t.dy[i] * (sx0 - t.minx), t.dx[i], t.dy[i]);
-        traverse_stamps(t.depth, lanes, sx0, sy0, x1, y1, tile, tile_size, sink);
+        if (x1 - sx0 < kTinyExtent && y1 - sy0 < kTinyExtent)
+            traverse_stamps<true>(t.depth, lanes, sx0, sy0, x1, y1, tile, tile_size, sink);
+        else
+            traverse_stamps<false>(t.depth, lanes, sx0, sy0, x1, y1, tile, tile_size, sink);
         return;
     }
     // Big triangle: per 16x16 block, reject when an edge is negative over the whole block,
@@ -144,7 +154,7 @@ inline void traverse(const TriangleSetup& t, const TileRect& tile, int tile_size
                 fill_stamps(t.depth, px0, py0, bx1, by1, tile, tile_size, sink);
                 continue;
             }
-            traverse_stamps(t.depth, lanes, px0, py0, bx1, by1, tile, tile_size, sink);
+            traverse_stamps<false>(t.depth, lanes, px0, py0, bx1, by1, tile, tile_size, sink);
         }
     }
 }
