@@ -139,8 +139,9 @@ void Rasterizer::render(const Mesh& mesh, const glm::mat4& view_projection, cons
             // Visibility out: stamp-swizzled tile to row-major frame.
             const int w = rect.x1 - rect.x0, h = rect.y1 - rect.y0;
             const size_t origin = size_t(rect.y0) * viewport.width + rect.x0;
+            // Without passes nothing reads the tile again during the frame: stream it out.
             buffers.flush(w, h, visibility.triangle.data() + origin, visibility.depth.data() + origin,
-                          size_t(viewport.width));
+                          size_t(viewport.width), !run_passes);
             if (stats) {
                 uint64_t visible = 0;
                 for (int y = 0; y < h; ++y)

@@ -2,6 +2,7 @@
 #pragma once
 #include <immintrin.h>
 
+#include <algorithm>
 #include <cstddef>
 #include <cstdint>
 
@@ -92,5 +93,20 @@ inline void store_stamp_rows(const uint32_t* stamps, uint32_t* dst, size_t strid
     if (rows > 1)
         _mm256_storeu_si256(reinterpret_cast<__m256i*>(dst + stride), _mm256_permute2x128_si256(a, b, 0x31));
 }
+
+// Copies n values to dst with non-temporal stores (no read of the destination lines, which
+// bypass the caches): ordinary stores up to dst's first 32-byte boundary and after the last
+// whole vector. stream_fence() orders them before later stores (call it once done).
+inline void stream_copy(uint32_t* dst, const uint32_t* src, size_t n) {
+    const size_t misaligned = (reinterpret_cast<uintptr_t>(dst) & 31) / sizeof(uint32_t);
+    const size_t head = std::min(n, (kLanes - misaligned) % kLanes);
+    size_t i = 0;
+    for (; i < head; ++i) dst[i] = src[i];
+    for (; i + kLanes <= n; i += kLanes)
+        _mm256_stream_si256(reinterpret_cast<__m256i*>(dst + i),
+                            _mm256_loadu_si256(reinterpret_cast<const __m256i*>(src + i)));
+    for (; i < n; ++i) dst[i] = src[i];
+}
+inline void stream_fence() { _mm_sfence(); }
 
 }  // namespace tessera::simd

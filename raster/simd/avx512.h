@@ -2,6 +2,7 @@
 #pragma once
 #include <immintrin.h>
 
+#include <algorithm>
 #include <cstddef>
 #include <cstdint>
 
@@ -101,6 +102,26 @@ inline void store_stamp_rows(const uint32_t* stamps, uint32_t* dst, size_t strid
                             blocks<0x88>(ab23, cd23), blocks<0xDD>(ab23, cd23)};
     for (int r = 0; r < rows; ++r) _mm512_storeu_si512(dst + size_t(r) * stride, row[r]);
 }
+
+// Copies n values to dst with non-temporal stores (no read of the destination lines, which
+// bypass the caches): masked ordinary stores up to dst's first 64-byte boundary and after
+// the last whole line. stream_fence() orders them before later stores (call it once done).
+inline void stream_copy(uint32_t* dst, const uint32_t* src, size_t n) {
+    const size_t misaligned = (reinterpret_cast<uintptr_t>(dst) & 63) / sizeof(uint32_t);
+    const size_t head = std::min(n, (kLanes - misaligned) % kLanes);
+    if (head) {
+        const __mmask16 m = __mmask16((1u << head) - 1);
+        _mm512_mask_storeu_epi32(dst, m, _mm512_maskz_loadu_epi32(m, src));
+    }
+    size_t i = head;
+    for (; i + kLanes <= n; i += kLanes)
+        _mm512_stream_si512(reinterpret_cast<__m512i*>(dst + i), _mm512_loadu_si512(src + i));
+    if (i < n) {
+        const __mmask16 m = __mmask16((1u << (n - i)) - 1);
+        _mm512_mask_storeu_epi32(dst + i, m, _mm512_maskz_loadu_epi32(m, src + i));
+    }
+}
+inline void stream_fence() { _mm_sfence(); }
 
 }  // namespace tessera::simd
 

@@ -74,4 +74,10 @@ inline void store_stamp_rows(const uint32_t* stamps, uint32_t* dst, size_t, int 
     if (rows > 0) dst[0] = stamps[0];
 }
 
+// Copies n values (the portable build has no non-temporal stores: ordinary ones).
+inline void stream_copy(uint32_t* dst, const uint32_t* src, size_t n) {
+    std::memcpy(dst, src, n * sizeof(uint32_t));
+}
+inline void stream_fence() {}
+
 }  // namespace tessera::simd
