@@ -179,7 +179,7 @@ void BM_ShadowMapRender(benchmark::State& state) {
     shadow::ShadowMap map(rasterizer, f.grid.mesh, f.grid.light, options);
     for (auto _ : state) {
         map.render(rasterizer, f.grid.mesh, f.grid.light);
-        benchmark::DoNotOptimize(map.depth().depth.data());
+        benchmark::DoNotOptimize(map.depth().data());
     }
 }
 

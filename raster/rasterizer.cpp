@@ -113,7 +113,10 @@ void Rasterizer::render(const Mesh& mesh, const glm::mat4& view_projection, cons
     const auto raster_start = Clock::now();
     visibility.width = viewport.width;
     visibility.height = viewport.height;
-    visibility.triangle.resize(size_t(viewport.width) * viewport.height);
+    if (options.depth_only && (color || !passes.empty()))
+        throw std::invalid_argument("Rasterizer::render: a depth-only render takes no passes or colour");
+    if (options.depth_only) visibility.triangle.clear();
+    else visibility.triangle.resize(size_t(viewport.width) * viewport.height);
     visibility.depth.resize(size_t(viewport.width) * viewport.height);
     if (color && !options.tile_color)
         throw std::invalid_argument("Rasterizer::render: a colour buffer needs RasterOptions::tile_color");
@@ -133,16 +136,18 @@ void Rasterizer::render(const Mesh& mesh, const glm::mat4& view_projection, cons
             for (const ChunkBins& chunk : s.chunks)
                 for (const TriangleSetup* e = chunk.begin(tile); e != chunk.end(tile); ++e) {
                     const TriangleSetup& t = *e;
-                    if (!t.transparent) rasterize_opaque(t, rect, buffers);
+                    if (t.transparent) continue;
+                    if (options.depth_only) rasterize_depth(t, rect, buffers);
+                    else rasterize_opaque(t, rect, buffers);
                 }
 
             // Visibility out: stamp-swizzled tile to row-major frame.
             const int w = rect.x1 - rect.x0, h = rect.y1 - rect.y0;
             const size_t origin = size_t(rect.y0) * viewport.width + rect.x0;
             // Without passes nothing reads the tile again during the frame: stream it out.
-            buffers.flush(w, h, visibility.triangle.data() + origin, visibility.depth.data() + origin,
-                          size_t(viewport.width), !run_passes);
-            if (stats) {
+            buffers.flush(w, h, options.depth_only ? nullptr : visibility.triangle.data() + origin,
+                          visibility.depth.data() + origin, size_t(viewport.width), !run_passes);
+            if (stats && !options.depth_only) {
                 uint64_t visible = 0;
                 for (int y = 0; y < h; ++y)
                     for (int x = 0; x < w; ++x)

@@ -215,7 +215,8 @@ void TileBuffers::flush(int width, int height, uint32_t* triangle_out, float* de
              reinterpret_cast<uintptr_t>(depth_out) % 64 == 0;
     // One array after the other: interleaving the two doubles the write streams in flight,
     // which measured 2x slower than two sequential passes.
-    flush_rows(triangle.data(), size, width, height, triangle_out, stride, kNoTriangle, stream, rows.data());
+    if (triangle_out)
+        flush_rows(triangle.data(), size, width, height, triangle_out, stride, kNoTriangle, stream, rows.data());
     flush_rows(reinterpret_cast<uint32_t*>(depth.data()), size, width, height,
                reinterpret_cast<uint32_t*>(depth_out), stride, std::bit_cast<uint32_t>(1.0f), stream,
                rows.data());
@@ -233,6 +234,13 @@ void rasterize_opaque(const TriangleSetup& t, const TileRect& tile, TileBuffers&
         const vmask pass = covered & (z < vfloat::load(depth + index));
         simd::store_masked(depth + index, pass, z);
         simd::store_masked(ids + index, pass, id);
+    });
+}
+
+void rasterize_depth(const TriangleSetup& t, const TileRect& tile, TileBuffers& buffers) {
+    float* depth = buffers.depth.data();
+    traverse(t, tile, buffers.size, [&](size_t index, int, int, vmask covered, vfloat z) {
+        simd::store_masked(depth + index, covered & (z < vfloat::load(depth + index)), z);
     });
 }
 

@@ -28,7 +28,8 @@ struct TileBuffers {
 
     void clear(int tile_size);  // depth 1.0, no triangle
     // Copies the tile's pixels [0, width) x [0, height) to row-major triangle / depth arrays
-    // with `stride` elements per row (pointing at the tile's first pixel), and leaves the
+    // with `stride` elements per row (pointing at the tile's first pixel; triangle_out null:
+    // depth only, the ids were not written), and leaves the
     // buffers cleared for the next tile of the same size. `stream`: with non-temporal stores
     // (simd::stream_copy) where the rows start on cache lines, for output that is not read
     // again soon; they skip reading each destination line first, which is most of the
@@ -44,6 +45,8 @@ struct TileBuffers {
 
 // Depth test LESS and write of one opaque triangle into the tile.
 void rasterize_opaque(const TriangleSetup& t, const TileRect& tile, TileBuffers& buffers);
+// The same without triangle ids (depth-only renders: shadow maps).
+void rasterize_depth(const TriangleSetup& t, const TileRect& tile, TileBuffers& buffers);
 
 // A covered pixel centre of a triangle: frame pixel (x, y) and its window depth.
 struct Fragment {
