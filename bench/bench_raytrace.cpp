@@ -145,7 +145,8 @@ void BM_SurfaceGather(benchmark::State& state) {
 
 constexpr int kShadowMapSize = 2048;
 
-// Shadow maps: one 2048^2 depth render per light by the rasterizer, then the PCF lookups.
+// Shadow maps: one 2048^2 depth-only render per light by the rasterizer, then the PCF lookups
+// (each includes gathering the surface points, as the shadow-ray benchmarks do).
 void BM_ShadowMaps(benchmark::State& state) {
     const int64_t tris = state.range(0), height = state.range(1);
     Fixture& f = fixture(tris);
@@ -169,6 +170,27 @@ void BM_ShadowMaps(benchmark::State& state) {
     }
 }
 
+// The lookups alone (gather + SIMD PCF, maps rendered once): BM_ShadowMaps minus the renders.
+void BM_ShadowMapLookups(benchmark::State& state) {
+    const int64_t tris = state.range(0), height = state.range(1);
+    Fixture& f = fixture(tris);
+    const VisibilityBuffer& vis = visibility(tris, height);
+    const glm::mat4 vp = view_projection(f, height);
+    const std::vector<glm::vec3> light_list = lights(f, state.range(2));
+    const auto cap = cap_threads(state.range(3));
+    Rasterizer rasterizer;
+    shadow::ShadowMapOptions options;
+    options.resolution = kShadowMapSize;
+    std::vector<shadow::ShadowMap> maps;
+    for (const glm::vec3& light : light_list)
+        maps.emplace_back(rasterizer, f.grid.mesh, light, options);
+    for (auto _ : state) {
+        const auto mask = shadow::compute_light_mask(vis, f.grid.mesh, vp, light_list,
+                                                     shadow::shadow_map_test(maps));
+        benchmark::DoNotOptimize(mask.bits.data());
+    }
+}
+
 // The depth render alone, at map resolution range(1) x range(1).
 void BM_ShadowMapRender(benchmark::State& state) {
     Fixture& f = fixture(state.range(0));
@@ -179,7 +201,7 @@ void BM_ShadowMapRender(benchmark::State& state) {
     shadow::ShadowMap map(rasterizer, f.grid.mesh, f.grid.light, options);
     for (auto _ : state) {
         map.render(rasterizer, f.grid.mesh, f.grid.light);
-        benchmark::DoNotOptimize(map.depth().depth.data());
+        benchmark::DoNotOptimize(map.depth().data());
     }
 }
 
@@ -403,6 +425,7 @@ TESSERA_SWEEP(BM_EmbreePrimarySingle, packet_sweep);
 TESSERA_SWEEP(BM_SurfaceGather, triangle_sweep);
 TESSERA_SWEEP(BM_ShadowMaps, triangle_sweep);
 TESSERA_SWEEP(BM_ShadowMaps, light_sweep);
+TESSERA_SWEEP(BM_ShadowMapLookups, triangle_sweep);
 TESSERA_SWEEP(BM_ShadowMapRender, map_sweep);
 TESSERA_SWEEP(BM_EmbreeShadowRays, triangle_sweep);
 TESSERA_SWEEP(BM_EmbreeShadowRays, light_sweep);

@@ -113,7 +113,10 @@ void Rasterizer::render(const Mesh& mesh, const glm::mat4& view_projection, cons
     const auto raster_start = Clock::now();
     visibility.width = viewport.width;
     visibility.height = viewport.height;
-    visibility.triangle.resize(size_t(viewport.width) * viewport.height);
+    if (options.depth_only && (color || !passes.empty()))
+        throw std::invalid_argument("Rasterizer::render: a depth-only render takes no passes or colour");
+    if (options.depth_only) visibility.triangle.clear();
+    else visibility.triangle.resize(size_t(viewport.width) * viewport.height);
     visibility.depth.resize(size_t(viewport.width) * viewport.height);
     if (color && !options.tile_color)
         throw std::invalid_argument("Rasterizer::render: a colour buffer needs RasterOptions::tile_color");
@@ -129,33 +132,28 @@ void Rasterizer::render(const Mesh& mesh, const glm::mat4& view_projection, cons
                                 std::min((ty + 1) * grid.size, grid.height)};
             TraceScope trace("raster tile", "tile", rect.x0, rect.y0);
             TileBuffers& buffers = scratch.buffers;
-            buffers.clear(grid.size);
+            if (buffers.size != grid.size) buffers.clear(grid.size);  // else flush() cleared them
             for (const ChunkBins& chunk : s.chunks)
                 for (const TriangleSetup* e = chunk.begin(tile); e != chunk.end(tile); ++e) {
                     const TriangleSetup& t = *e;
-                    if (!t.transparent) rasterize_opaque(t, rect, buffers);
+                    if (t.transparent) continue;
+                    if (options.depth_only) rasterize_depth(t, rect, buffers);
+                    else rasterize_opaque(t, rect, buffers);
                 }
 
             // Visibility out: stamp-swizzled tile to row-major frame.
             const int w = rect.x1 - rect.x0, h = rect.y1 - rect.y0;
-            uint64_t visible = 0;
-            for (int y = 0; y < h; ++y) {
-                const size_t row = size_t(rect.y0 + y) * viewport.width + rect.x0;
-                int x = 0;
-                for (; x + simd::kStampW <= w; x += simd::kStampW) {  // one stamp row at a time
-                    const size_t i = buffers.index(x, y);
-                    std::memcpy(&visibility.triangle[row + x], &buffers.triangle[i], simd::kStampW * sizeof(uint32_t));
-                    std::memcpy(&visibility.depth[row + x], &buffers.depth[i], simd::kStampW * sizeof(float));
-                }
-                for (; x < w; ++x) {
-                    const size_t i = buffers.index(x, y);
-                    visibility.triangle[row + x] = buffers.triangle[i];
-                    visibility.depth[row + x] = buffers.depth[i];
-                }
-                if (stats)
-                    for (int x = 0; x < w; ++x) visible += visibility.triangle[row + x] != kNoTriangle;
+            const size_t origin = size_t(rect.y0) * viewport.width + rect.x0;
+            // Without passes nothing reads the tile again during the frame: stream it out.
+            buffers.flush(w, h, options.depth_only ? nullptr : visibility.triangle.data() + origin,
+                          visibility.depth.data() + origin, size_t(viewport.width), !run_passes);
+            if (stats && !options.depth_only) {
+                uint64_t visible = 0;
+                for (int y = 0; y < h; ++y)
+                    for (int x = 0; x < w; ++x)
+                        visible += visibility.triangle[origin + size_t(y) * viewport.width + x] != kNoTriangle;
+                visible_pixels += visible;
             }
-            if (stats) visible_pixels += visible;
             if (!run_passes) continue;
 
             const auto pass_start = Clock::now();
@@ -166,7 +164,6 @@ void Rasterizer::render(const Mesh& mesh, const glm::mat4& view_projection, cons
             context.viewport = &viewport;
             context.mesh = &mesh;
             context.clip = &s.vertices;
-            const size_t origin = size_t(rect.y0) * viewport.width + rect.x0;
             context.triangle = visibility.triangle.data() + origin;
             context.depth = visibility.depth.data() + origin;
             context.stride = size_t(viewport.width);

@@ -44,6 +44,9 @@ struct RasterOptions {
     // false: the passes write their own output and get no colour tile (TileContext::color is
     // null), which saves clearing 16 bytes per pixel per frame; render() then takes no colour.
     bool tile_color = true;
+    // Depth only (shadow maps): no triangle ids are written - VisibilityBuffer::triangle is
+    // left empty - and no passes or colour may be given.
+    bool depth_only = false;
 };
 
 // Counts and per-stage wall times of one render (times in milliseconds).
@@ -57,7 +60,7 @@ struct RasterStats {
     uint64_t no_samples = 0;    // cover no pixel centre of the viewport
     uint64_t setups = 0;        // triangles (and clipped pieces) set up for traversal
     uint64_t bin_entries = 0;   // (tile, triangle) pairs
-    uint64_t visible_pixels = 0;
+    uint64_t visible_pixels = 0;  // covered pixels (not counted by depth-only renders)
     double vertex_ms = 0, setup_bin_ms = 0, raster_ms = 0, passes_ms = 0, total_ms = 0;
 
     // Sums of the counts and times of several renders (the regions of one large frame).

@@ -24,8 +24,18 @@ struct TileBuffers {
     int size = 0;
     AlignedVector<float> depth;
     AlignedVector<uint32_t> triangle;
+    AlignedVector<uint32_t> rows;  // flush(): kStampH rows of the tile in row-major order
 
     void clear(int tile_size);  // depth 1.0, no triangle
+    // Copies the tile's pixels [0, width) x [0, height) to row-major triangle / depth arrays
+    // with `stride` elements per row (pointing at the tile's first pixel; triangle_out null:
+    // depth only, the ids were not written), and leaves the
+    // buffers cleared for the next tile of the same size. `stream`: with non-temporal stores
+    // (simd::stream_copy) where the rows start on cache lines, for output that is not read
+    // again soon; they skip reading each destination line first, which is most of the
+    // copy's cost once the frame is out of cache.
+    void flush(int width, int height, uint32_t* triangle_out, float* depth_out, size_t stride,
+               bool stream);
     // Index of tile-local pixel (x, y) in the arrays.
     size_t index(int x, int y) const {
         const int stamp = (y / simd::kStampH) * (size / simd::kStampW) + x / simd::kStampW;
@@ -35,6 +45,8 @@ struct TileBuffers {
 
 // Depth test LESS and write of one opaque triangle into the tile.
 void rasterize_opaque(const TriangleSetup& t, const TileRect& tile, TileBuffers& buffers);
+// The same without triangle ids (depth-only renders: shadow maps).
+void rasterize_depth(const TriangleSetup& t, const TileRect& tile, TileBuffers& buffers);
 
 // A covered pixel centre of a triangle: frame pixel (x, y) and its window depth.
 struct Fragment {

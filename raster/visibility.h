@@ -5,6 +5,8 @@
 #include <cstdint>
 #include <vector>
 
+#include "raster/aligned_vector.h"
+
 namespace tessera {
 
 inline constexpr uint32_t kNoTriangle = 0xFFFFFFFFu;
@@ -12,8 +14,10 @@ inline constexpr uint32_t kNoTriangle = 0xFFFFFFFFu;
 struct VisibilityBuffer {
     int width = 0;
     int height = 0;
-    std::vector<uint32_t> triangle;  // rows top to bottom; kNoTriangle where nothing covers
-    std::vector<float> depth;        // window depth z_ndc * 0.5 + 0.5; 1.0 where empty
+    // Cache-line aligned, so that rows whose width is a multiple of 16 start on a line: the
+    // rasterizer then streams whole lines into them (TileBuffers::flush).
+    AlignedVector<uint32_t> triangle;  // rows top to bottom; kNoTriangle where nothing covers
+    AlignedVector<float> depth;        // window depth z_ndc * 0.5 + 0.5; 1.0 where empty
 
     void reset(int w, int h) {
         width = w;

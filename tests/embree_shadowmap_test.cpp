@@ -7,6 +7,8 @@
 #include <limits>
 #include <vector>
 
+#include "procedural/hash.h"
+#include "raster/embree/pixel_rays.h"
 #include "raster/embree/scene.h"
 #include "raster/embree/shadow_rays.h"
 #include "raster/rasterizer.h"
@@ -154,6 +156,52 @@ TEST(ShadowMap, BrokenTrianglesAreSkippedAndTheFrameStillRenders) {
     EXPECT_TRUE(map.lit({2.0f, 0.0f, 0.0f}, kUp));
     const rt::RayScene scene(rt::default_ray_device(), mesh);
     EXPECT_EQ(scene.defects().total(), 3u);
+}
+
+// The SIMD lookup (mark_lit) must answer exactly what lit() answers point by point: on every
+// surface point of a sphere-grid frame, and on random points and normals around the scene
+// (outside the map, behind the light, on its edges), for several PCF radii and map sizes.
+TEST(ShadowMap, SimdLookupEqualsScalarReference) {
+    const SphereGridScene grid = make_sphere_grid(20000);
+    const glm::mat4 vp = grid.camera.view_projection();
+    Rasterizer rasterizer;
+    VisibilityBuffer vis;
+    const int w = 320, h = 180;
+    rasterizer.render(grid.mesh, vp, Viewport(w, h), RasterOptions{}, vis);
+    SurfacePoints points;
+    gather_surface_points(vis, grid.mesh, rt::PixelRays(vp, w, h), rt::ImageTile{0, 0, w, h}, points);
+    const size_t from_frame = points.size();
+    ASSERT_GT(from_frame, 20000u);
+    procedural::SplitMix64 random(6);
+    const auto uniform = [&](float lo, float hi) {
+        return lo + (hi - lo) * float(random.next() >> 40) / float(1 << 24);
+    };
+    const float e = float(grid.grid);
+    for (int i = 0; i < 5003; ++i) {  // not a multiple of the lane count
+        points.pixel.push_back(0);
+        points.position.push_back({uniform(-e, e), uniform(-1.0f, 2.5f * e), uniform(-e, e)});
+        points.normal.push_back(glm::normalize(
+            glm::vec3(uniform(-1.0f, 1.0f), uniform(-1.0f, 1.0f), uniform(-1.0f, 1.0f)) + 1e-3f));
+    }
+    for (int pcf : {0, 1, 2}) {
+        for (int resolution : {97, 2048}) {
+            ShadowMapOptions options;
+            options.resolution = resolution;
+            options.pcf_radius = pcf;
+            const ShadowMap map(rasterizer, grid.mesh, grid.light, options);
+            std::vector<uint8_t> simd(points.size(), 0), scalar(points.size(), 0);
+            map.mark_lit(points, 4, simd);
+            map.mark_lit_reference(points, 4, scalar);
+            size_t lit = 0, differ = 0;
+            for (size_t i = 0; i < points.size(); ++i) {
+                lit += scalar[i] != 0;
+                differ += simd[i] != scalar[i];
+            }
+            EXPECT_EQ(differ, 0u) << "pcf " << pcf << ", resolution " << resolution;
+            EXPECT_GT(lit, points.size() / 4) << "pcf " << pcf << ", resolution " << resolution;
+            EXPECT_LT(lit, points.size() - points.size() / 10) << "some points must be dark";
+        }
+    }
 }
 
 TEST(ShadowMap, BadOptionsAreRejected) {

@@ -111,7 +111,8 @@ TEST(RasterPipeline, BarycentricsSimdEqualsScalar) {
 
 // Same bytes for 1 and 2 threads and for every tile size, equal to the reference.
 TEST(RasterPipeline, DeterministicAcrossThreadsAndTileSizes) {
-    const int w = 333, h = 200;
+    // Neither side a multiple of a stamp group (16 x 4 pixels): tiles end in partial groups.
+    const int w = 333, h = 201;
     const Mesh mesh = test_meshes::sphere(120, 60);
     Camera camera;
     camera.eye = {0.2f, 0.5f, 2.2f};
@@ -130,6 +131,34 @@ TEST(RasterPipeline, DeterministicAcrossThreadsAndTileSizes) {
             EXPECT_TRUE(vis.depth == reference.depth) << threads << " threads, tile " << tile;
         }
     }
+}
+
+// A depth-only render (shadow maps) gives the full render's depth, writes no ids, and takes
+// no passes.
+TEST(RasterPipeline, DepthOnlyGivesTheSameDepth) {
+    const int w = 333, h = 201;
+    const Mesh mesh = test_meshes::sphere(120, 60);
+    Camera camera;
+    camera.eye = {0.2f, 0.5f, 2.2f};
+    camera.aspect = float(w) / float(h);
+    const glm::mat4 vp = camera.view_projection();
+    VisibilityBuffer full, depth_only;
+    Rasterizer rasterizer;
+    rasterizer.render(mesh, vp, Viewport(w, h), {}, full);
+    RasterOptions options;
+    options.depth_only = true;
+    for (int tile : {16, 128}) {
+        options.tile_size = tile;
+        rasterizer.render(mesh, vp, Viewport(w, h), options, depth_only);
+        EXPECT_TRUE(depth_only.depth == full.depth) << "tile " << tile;
+        EXPECT_TRUE(depth_only.triangle.empty());
+    }
+    size_t covered = 0;
+    for (float z : full.depth) covered += z < 1.0f;
+    EXPECT_GT(covered, size_t(w * h / 4));
+    const std::vector<TilePass> passes = {[](const TileContext&) {}};
+    EXPECT_THROW(rasterizer.render(mesh, vp, Viewport(w, h), options, depth_only, passes),
+                 std::invalid_argument);
 }
 
 // Every pixel is visited by exactly one pass call, which sees the final visibility; the colour

@@ -241,9 +241,12 @@ std::vector<uint8_t> GlFrame::colour_rgb8() const {
 VisibilityBuffer GlFrame::visibility() const {
     VisibilityBuffer visibility;
     visibility.reset(options_.width, options_.height);
-    visibility.depth = read<float>(GL_DEPTH_ATTACHMENT, GL_DEPTH_COMPONENT, GL_FLOAT, 1);
+    const std::vector<float> depth = read<float>(GL_DEPTH_ATTACHMENT, GL_DEPTH_COMPONENT, GL_FLOAT, 1);
+    visibility.depth.assign(depth.begin(), depth.end());
     if (options_.triangle_ids) {
-        visibility.triangle = read<uint32_t>(GL_COLOR_ATTACHMENT1, GL_RED_INTEGER, GL_UNSIGNED_INT, 1);
+        const std::vector<uint32_t> ids =
+            read<uint32_t>(GL_COLOR_ATTACHMENT1, GL_RED_INTEGER, GL_UNSIGNED_INT, 1);
+        visibility.triangle.assign(ids.begin(), ids.end());
         for (uint32_t& id : visibility.triangle) id -= 1;  // 0 (cleared: empty) wraps to kNoTriangle
     }
     return visibility;

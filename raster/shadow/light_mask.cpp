@@ -1,5 +1,7 @@
 #include "raster/shadow/light_mask.h"
 
+#include <tbb/enumerable_thread_specific.h>
+
 #include <stdexcept>
 #include <string>
 
@@ -17,10 +19,19 @@ LightMask compute_light_mask(const VisibilityBuffer& visibility, const Mesh& mes
     mask.bits.assign(size_t(mask.width) * size_t(mask.height), 0);
     if (mask.bits.empty()) return mask;
     const rt::PixelRays rays(view_projection, visibility.width, visibility.height);
-    rt::parallel_for_tiles(visibility.width, visibility.height, [&](const rt::ImageTile& tile) {
+    // Per-thread scratch: a 1080p frame has about 2000 tiles, each of which would otherwise
+    // allocate its point lists anew.
+    struct Scratch {
         SurfacePoints points;
+        std::vector<uint8_t> visible;
+    };
+    tbb::enumerable_thread_specific<Scratch> scratch;
+    rt::parallel_for_tiles(visibility.width, visibility.height, [&](const rt::ImageTile& tile) {
+        Scratch& local = scratch.local();
+        SurfacePoints& points = local.points;
+        std::vector<uint8_t>& visible = local.visible;
         gather_surface_points(visibility, mesh, rays, tile, points);
-        std::vector<uint8_t> visible(points.size(), 0);
+        visible.assign(points.size(), 0);
         if (!lights.empty()) test(points, lights, visible);
         for (size_t i = 0; i < points.size(); ++i) mask.bits[points.pixel[i]] = visible[i];
     });

@@ -20,6 +20,11 @@
 //
 // PCF: (2r+1)^2 nearest-texel depth comparisons around the receiver; lit_fraction() is the
 // fraction passing, and lit() their majority (the binary state the light mask keeps).
+// mark_lit() answers lit() for a whole tile of surface points, simd::kLanes at a time, with
+// the same float operations in the same order (receiver_in_map in shadow_map.cpp), so it
+// equals mark_lit_reference(), the one-point-at-a-time definition, bit for bit.
+//
+// The map is rendered depth only (RasterOptions::depth_only): no triangle ids are written.
 #pragma once
 #include <glm/glm.hpp>
 
@@ -56,9 +61,16 @@ public:
     // Whether at least half the taps see it (stops reading taps once the answer is known).
     bool lit(const glm::vec3& position, const glm::vec3& normal) const;
 
+    // Sets `bit` in visible[i] for every point i that faces the light (faces_light) and is
+    // lit(): SIMD over the points. visible.size() must be points.size().
+    void mark_lit(const SurfacePoints& points, uint8_t bit, std::span<uint8_t> visible) const;
+    // The same, one point at a time through faces_light() and lit() (the reference).
+    void mark_lit_reference(const SurfacePoints& points, uint8_t bit, std::span<uint8_t> visible) const;
+
     const glm::vec3& light() const { return light_; }
     const glm::mat4& view_projection() const { return view_projection_; }
-    const VisibilityBuffer& depth() const { return depth_; }  // triangle ids come along
+    // The map's window depths, resolution x resolution texels, rows top to bottom.
+    std::span<const float> depth() const { return depth_.depth; }
     const ShadowMapOptions& options() const { return options_; }
 
 private:

@@ -2,6 +2,8 @@
 #pragma once
 #include <immintrin.h>
 
+#include <algorithm>
+#include <cstddef>
 #include <cstdint>
 
 namespace tessera::simd {
@@ -80,5 +82,31 @@ inline void store_masked(uint32_t* p, vmask m, vint a) {
     int32_t* q = reinterpret_cast<int32_t*>(p);
     select(m, a, vint::load(q)).store(q);
 }
+
+// Stamp layout to rows (simd.h): `stamps` holds kStampH horizontally adjacent 4x2 stamps
+// (aligned, 16 values); row r of the 8 x 2 pixels they cover is written to dst + r * stride
+// (unaligned), for r < rows. Row r of a stamp is its 128-bit half r.
+inline void store_stamp_rows(const uint32_t* stamps, uint32_t* dst, size_t stride, int rows) {
+    const __m256i a = _mm256_load_si256(reinterpret_cast<const __m256i*>(stamps));
+    const __m256i b = _mm256_load_si256(reinterpret_cast<const __m256i*>(stamps + 8));
+    _mm256_storeu_si256(reinterpret_cast<__m256i*>(dst), _mm256_permute2x128_si256(a, b, 0x20));
+    if (rows > 1)
+        _mm256_storeu_si256(reinterpret_cast<__m256i*>(dst + stride), _mm256_permute2x128_si256(a, b, 0x31));
+}
+
+// Copies n values to dst with non-temporal stores (no read of the destination lines, which
+// bypass the caches): ordinary stores up to dst's first 32-byte boundary and after the last
+// whole vector. stream_fence() orders them before later stores (call it once done).
+inline void stream_copy(uint32_t* dst, const uint32_t* src, size_t n) {
+    const size_t misaligned = (reinterpret_cast<uintptr_t>(dst) & 31) / sizeof(uint32_t);
+    const size_t head = std::min(n, (kLanes - misaligned) % kLanes);
+    size_t i = 0;
+    for (; i < head; ++i) dst[i] = src[i];
+    for (; i + kLanes <= n; i += kLanes)
+        _mm256_stream_si256(reinterpret_cast<__m256i*>(dst + i),
+                            _mm256_loadu_si256(reinterpret_cast<const __m256i*>(src + i)));
+    for (; i < n; ++i) dst[i] = src[i];
+}
+inline void stream_fence() { _mm_sfence(); }
 
 }  // namespace tessera::simd

@@ -2,6 +2,8 @@
 #pragma once
 #include <immintrin.h>
 
+#include <algorithm>
+#include <cstddef>
 #include <cstdint>
 
 // GCC 12's plain min/max/cvt/sqrt/gather/srav intrinsics pass an _mm512_undefined_ps() operand to
@@ -83,6 +85,43 @@ inline vfloat gather(const float* base, vint index) {
 // Aligned stores of the lanes selected by `m`.
 inline void store_masked(float* p, vmask m, vfloat a) { _mm512_mask_store_ps(p, m.m, a.v); }
 inline void store_masked(uint32_t* p, vmask m, vint a) { _mm512_mask_store_epi32(p, m.m, a.v); }
+
+// 128-bit blocks of x (result blocks 0, 1) and y (2, 3), chosen by the 2-bit fields of P.
+template <int P>
+inline __m512i blocks(__m512i x, __m512i y) { return _mm512_mask_shuffle_i32x4(x, kAllLanes, x, y, P); }
+
+// Stamp layout to rows (simd.h): `stamps` holds kStampH horizontally adjacent 4x4 stamps
+// (aligned, 64 values); row r of the 16 x 4 pixels they cover is written to dst + r * stride
+// (unaligned), for r < rows. A 4x4 transpose of 128-bit blocks: block r of stamp s is row r.
+inline void store_stamp_rows(const uint32_t* stamps, uint32_t* dst, size_t stride, int rows) {
+    const __m512i a = _mm512_load_si512(stamps), b = _mm512_load_si512(stamps + 16);
+    const __m512i c = _mm512_load_si512(stamps + 32), d = _mm512_load_si512(stamps + 48);
+    const __m512i ab01 = blocks<0x44>(a, b), ab23 = blocks<0xEE>(a, b);  // a0 a1 b0 b1, a2 a3 b2 b3
+    const __m512i cd01 = blocks<0x44>(c, d), cd23 = blocks<0xEE>(c, d);
+    const __m512i row[4] = {blocks<0x88>(ab01, cd01), blocks<0xDD>(ab01, cd01),  // a0 b0 c0 d0, ...
+                            blocks<0x88>(ab23, cd23), blocks<0xDD>(ab23, cd23)};
+    for (int r = 0; r < rows; ++r) _mm512_storeu_si512(dst + size_t(r) * stride, row[r]);
+}
+
+// Copies n values to dst with non-temporal stores (no read of the destination lines, which
+// bypass the caches): masked ordinary stores up to dst's first 64-byte boundary and after
+// the last whole line. stream_fence() orders them before later stores (call it once done).
+inline void stream_copy(uint32_t* dst, const uint32_t* src, size_t n) {
+    const size_t misaligned = (reinterpret_cast<uintptr_t>(dst) & 63) / sizeof(uint32_t);
+    const size_t head = std::min(n, (kLanes - misaligned) % kLanes);
+    if (head) {
+        const __mmask16 m = __mmask16((1u << head) - 1);
+        _mm512_mask_storeu_epi32(dst, m, _mm512_maskz_loadu_epi32(m, src));
+    }
+    size_t i = head;
+    for (; i + kLanes <= n; i += kLanes)
+        _mm512_stream_si512(reinterpret_cast<__m512i*>(dst + i), _mm512_loadu_si512(src + i));
+    if (i < n) {
+        const __mmask16 m = __mmask16((1u << (n - i)) - 1);
+        _mm512_mask_storeu_epi32(dst + i, m, _mm512_maskz_loadu_epi32(m, src + i));
+    }
+}
+inline void stream_fence() { _mm_sfence(); }
 
 }  // namespace tessera::simd
 

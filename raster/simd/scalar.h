@@ -69,4 +69,15 @@ inline vfloat gather(const float* base, vint index) { return base[index.v]; }
 inline void store_masked(float* p, vmask m, vfloat a) { if (m.m) p[0] = a.v; }
 inline void store_masked(uint32_t* p, vmask m, vint a) { if (m.m) p[0] = uint32_t(a.v); }
 
+// Stamp layout to rows (simd.h): with one-pixel stamps, the one stamp is the one row.
+inline void store_stamp_rows(const uint32_t* stamps, uint32_t* dst, size_t, int rows) {
+    if (rows > 0) dst[0] = stamps[0];
+}
+
+// Copies n values (the portable build has no non-temporal stores: ordinary ones).
+inline void stream_copy(uint32_t* dst, const uint32_t* src, size_t n) {
+    std::memcpy(dst, src, n * sizeof(uint32_t));
+}
+inline void stream_fence() {}
+
 }  // namespace tessera::simd

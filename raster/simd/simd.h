@@ -31,4 +31,12 @@ inline vint stamp_y() {
     return lane_index() >> vint(kStampW == 4 ? 2 : 0);
 }
 
+// store_stamp_rows(stamps, dst, stride, rows) (in each back end): kStampH horizontally
+// adjacent stamps, stored contiguously as a tile keeps them, cover kLanes x kStampH pixels;
+// it writes their rows 0 .. rows-1 (rows <= kStampH) as kLanes consecutive values each to
+// dst + r * stride. The bits are copied unchanged (float data goes through as uint32_t).
+//
+// stream_copy(dst, src, n) / stream_fence(): a copy whose stores bypass the caches (for
+// output nothing reads soon: they save reading each destination line before writing it).
+
 }  // namespace tessera::simd
