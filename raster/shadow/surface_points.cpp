@@ -41,6 +41,13 @@ void gather_surface_points(const VisibilityBuffer& visibility, const Mesh& mesh,
     out.pixel.reserve(area);
     out.position.reserve(area);
     out.normal.reserve(area);
+    // The tile's ids are read in 4x4 blocks, which the hardware prefetchers do not follow
+    // across rows; when the visibility buffer is cold (written with streaming stores, or
+    // long ago) every cache line was a serial miss. Asking for all of them first lets the
+    // misses overlap.
+    for (int y = tile.y0; y < tile.y1; ++y)
+        for (int x = tile.x0; x < tile.x1; x += 16)
+            __builtin_prefetch(&visibility.triangle[size_t(y) * size_t(visibility.width) + size_t(x)]);
     constexpr int kBlock = 4;
     uint32_t cached = kNoTriangle;  // neighbouring pixels mostly share a triangle
     Plane plane;
