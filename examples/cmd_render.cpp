@@ -5,8 +5,10 @@
 //                  [--resume] [--shard I/N] [--stats] [--trace FILE.json] [--quiet]
 // Frames are encoded and written on a background thread (FrameWriter) while the next one
 // renders, each atomically (temp name + rename), so an interrupted run leaves only complete
-// frames and --resume skips them. Ctrl-C finishes the frame in hand, waits for the writer
-// and exits 130. Exit codes as every command: 2 for bad flags, 1 for a failed run.
+// frames and --resume skips them. Frames beyond one 8192x8192 pass are rendered band by band
+// and streamed into their file (FrameRenderer::render_bands, FrameStream), so memory holds a
+// band, not the frame. Ctrl-C finishes the frame in hand, waits for the writer and exits 130.
+// Exit codes as every command: 2 for bad flags, 1 for a failed run.
 #include <unistd.h>
 
 #include <algorithm>
