@@ -146,32 +146,9 @@ void BM_SurfaceGather(benchmark::State& state) {
 constexpr int kShadowMapSize = 2048;
 
 // Shadow maps: one 2048^2 depth-only render per light by the rasterizer, then the PCF lookups
-// (each includes gathering the surface points, as the shadow-ray benchmarks do).
-void BM_ShadowMaps(benchmark::State& state) {
-    const int64_t tris = state.range(0), height = state.range(1);
-    Fixture& f = fixture(tris);
-    const VisibilityBuffer& vis = visibility(tris, height);
-    const glm::mat4 vp = view_projection(f, height);
-    const std::vector<glm::vec3> light_list = lights(f, state.range(2));
-    const auto cap = cap_threads(state.range(3));
-    Rasterizer rasterizer;
-    shadow::ShadowMapOptions options;
-    options.resolution = kShadowMapSize;
-    // The maps live across frames (as in a renderer): each frame re-renders them in place.
-    std::vector<shadow::ShadowMap> maps;
-    for (const glm::vec3& light : light_list)
-        maps.emplace_back(rasterizer, f.grid.mesh, light, options);
-    for (auto _ : state) {
-        for (size_t l = 0; l < maps.size(); ++l)
-            maps[l].render(rasterizer, f.grid.mesh, light_list[l]);
-        const auto mask = shadow::compute_light_mask(vis, f.grid.mesh, vp, light_list,
-                                                     shadow::shadow_map_test(maps));
-        benchmark::DoNotOptimize(mask.bits.data());
-    }
-}
-
-// The lookups alone (gather + SIMD PCF, maps rendered once): BM_ShadowMaps minus the renders.
-void BM_ShadowMapLookups(benchmark::State& state) {
+// (each includes gathering the surface points, as the shadow-ray benchmarks do). The maps live
+// across frames, as in a renderer; `render_maps` false times the lookups alone.
+void shadow_maps(benchmark::State& state, bool render_maps) {
     const int64_t tris = state.range(0), height = state.range(1);
     Fixture& f = fixture(tris);
     const VisibilityBuffer& vis = visibility(tris, height);
@@ -185,11 +162,15 @@ void BM_ShadowMapLookups(benchmark::State& state) {
     for (const glm::vec3& light : light_list)
         maps.emplace_back(rasterizer, f.grid.mesh, light, options);
     for (auto _ : state) {
+        if (render_maps)
+            for (size_t l = 0; l < maps.size(); ++l) maps[l].render(rasterizer, f.grid.mesh, light_list[l]);
         const auto mask = shadow::compute_light_mask(vis, f.grid.mesh, vp, light_list,
                                                      shadow::shadow_map_test(maps));
         benchmark::DoNotOptimize(mask.bits.data());
     }
 }
+void BM_ShadowMaps(benchmark::State& state) { shadow_maps(state, true); }
+void BM_ShadowMapLookups(benchmark::State& state) { shadow_maps(state, false); }
 
 // The depth render alone, at map resolution range(1) x range(1).
 void BM_ShadowMapRender(benchmark::State& state) {
