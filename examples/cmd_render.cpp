@@ -334,7 +334,7 @@ TESSERA_COMMAND(20, [](CLI::App& root) -> Run {
     CLI::App* cmd = root.add_subcommand("render", "render animation frames of a scene (built-in name or FILE.json)");
     cmd->add_option("--scene", o->scene, "Scene name (snakes, flag, toon, bumpcube, terrain, metaballs, stress) or FILE.json")
         ->capture_default_str();
-    cmd->add_option("--size", o->size, "Frame size WxH (default: the scene's)");
+    cmd->add_option("--size", o->size, "Frame size WxH, up to 65536 a side; beyond 8192 rendered in bands and streamed (default: the scene's)");
     cmd->add_option("--frames", o->frames, "Frames A:B, inclusive (default: the scene's)");
     cmd->add_option("--fps", o->fps, "Frames per second of scene time (default: the scene's)");
     cmd->add_option("--out", o->out, "Output pattern; #### or %04d is the frame number (.png, .exr, .tif)");
