@@ -213,9 +213,10 @@ int run(const Options& o, const std::string& executable) {
             // Rendered band by band and streamed into the file (on rank 0 in tiles mode); the
             // file is created with the first band and published with the last.
             std::optional<FrameStream> file;
-            const auto write = [&](int b, const Frame& band) {
+            const auto encode = [&](const Frame& band) { return encode_frame(path, band); };
+            const auto write = [&](int b, OwnedImage band) {
                 if (!file) file.emplace(path, width, height);
-                file->write(layout.rows(b).first, band);
+                file->write(layout.rows(b).first, std::move(band));
                 if (b + 1 == layout.bands()) file->commit();
             };
             const auto render = [&](const FrameRenderer::BandFilter& mine, const FrameRenderer::BandSink& deliver) {
@@ -224,7 +225,7 @@ int run(const Options& o, const std::string& executable) {
                 frame_renderer.render_bands(float(f) / fps, layout, mine, deliver, &st);
             };
             try {
-                if (!dist.stream_bands(f, layout, render, write)) continue;
+                if (!dist.stream_bands(f, layout, render, encode, write)) continue;
             } catch (const std::exception& e) {
                 if (dist.ranks() == 1) throw;
                 dist.fail(f, e.what());

@@ -46,15 +46,19 @@ public:
     // false and finish() reports it. Other modes: returns true.
     virtual bool gather(int frame_number, Frame& frame, const std::string& failure) { return failure.empty(); }
     // A frame rendered in bands: render(mine, deliver) renders the bands mine(b) selects and
-    // delivers each in order; write(b, pixels) stores band b (bands arrive in order from 0).
-    // Locally every band is rendered and written, and failures are thrown. Tiles mode: see
-    // above; failures are exchanged instead, and the result is as gather()'s.
+    // delivers each in order; encode(pixels) turns a band into the file's encoding (where it
+    // was rendered: an 8-bit band is a quarter of the floats to send); write(b, encoded)
+    // stores band b (bands arrive in order from 0). Locally every band is rendered and
+    // written, and failures are thrown. Tiles mode: see above; failures are exchanged
+    // instead, and the result is as gather()'s.
     using RenderBands = std::function<void(const FrameRenderer::BandFilter&, const FrameRenderer::BandSink&)>;
+    using EncodeBand = std::function<OwnedImage(const Frame&)>;
+    using WriteBand = std::function<void(int band, OwnedImage encoded)>;
     virtual bool stream_bands(int frame_number, const BandLayout& layout, const RenderBands& render,
-                              const FrameRenderer::BandSink& write) {
+                              const EncodeBand& encode, const WriteBand& write) {
         (void)frame_number;
         (void)layout;
-        render([](int) { return true; }, write);
+        render([](int) { return true; }, [&](int b, const Frame& band) { write(b, encode(band)); });
         return true;
     }
     // This rank failed on `frame` (frames mode): rank 0 learns of it, no more frames follow.

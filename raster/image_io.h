@@ -4,6 +4,7 @@
 // Writing is atomic (see atomic_file.h): an interrupted or failed write never leaves a
 // half-written image under the final name.
 #pragma once
+#include <cstddef>
 #include <cstdint>
 #include <filesystem>
 #include <span>
@@ -12,6 +13,10 @@
 namespace tessera {
 
 enum class PixelType { u8, u16, f32 };
+
+inline size_t pixel_type_bytes(PixelType type) {
+    return type == PixelType::u8 ? 1 : type == PixelType::u16 ? 2 : 4;
+}
 
 // A read-only view of pixels in memory; `pixels` holds width*height*channels values of `type`.
 struct ImageView {

@@ -16,8 +16,4 @@ inline OIIO::TypeDesc oiio_type(PixelType type) {
     return OIIO::TypeDesc::UNKNOWN;
 }
 
-inline size_t pixel_type_bytes(PixelType type) {
-    return type == PixelType::u8 ? 1 : type == PixelType::u16 ? 2 : 4;
-}
-
 }  // namespace tessera

@@ -24,7 +24,7 @@ namespace {
 constexpr int kTagRequest = 1;  // worker -> rank 0: Message
 constexpr int kTagFrame = 2;    // rank 0 -> worker: int frame, -1 = no more
 constexpr int kTagBand = 3;     // worker -> rank 0: Message for one band (done or failed)
-constexpr int kTagPixels = 4;   // worker -> rank 0: the band's float RGBA, after a done Message
+constexpr int kTagPixels = 4;   // worker -> rank 0: the band's encoded bytes, after a done Message
 // Rows per band boundary: a multiple of the renderers' tile sizes (128 raster, 64 rays), so a
 // tile is shaded by one rank only.
 constexpr int kBandAlign = 128;
@@ -34,6 +34,7 @@ struct Message {
     int32_t kind = request;
     int32_t frame = -1;
     std::array<char, 1000> text{};
+    int32_t pixel_type = 0;  // a done band: its PixelType; the byte count follows from it
 };
 
 // Waits for a non-blocking operation without spinning: Open MPI's blocking calls poll in a
@@ -247,17 +248,17 @@ public:
     }
 
     bool stream_bands(int frame_number, const BandLayout& layout, const RenderBands& render,
-                      const FrameRenderer::BandSink& write) override {
+                      const EncodeBand& encode, const WriteBand& write) override {
         std::string failure;  // rank 0: the frame's first failure; a worker: its own
         int failed_rank = -1;
         if (rank_ == 0) {
             const auto fail_with = [&](int rank, const std::string& why) {
                 if (failed_rank < 0) failed_rank = rank, failure = why;
             };
-            const auto store = [&](int b, const Frame& band) {
+            const auto store = [&](int b, OwnedImage band) {
                 if (failed_rank >= 0) return;  // the frame is lost; its temporary goes
                 try {
-                    write(b, band);
+                    write(b, std::move(band));
                 } catch (const std::exception& e) {
                     fail_with(0, e.what());
                 }
@@ -279,18 +280,19 @@ public:
                         continue;
                     }
                     const auto [y0, y1] = layout.rows(next);
-                    Frame band(layout.width, y1 - y0);
-                    MPI_Irecv(band.pixels.data(), int(band.pixels.size() * 4), MPI_FLOAT, from, kTagPixels,
-                              MPI_COMM_WORLD, &request);
+                    OwnedImage band{layout.width, y1 - y0, 4, PixelType(m.pixel_type), {}};
+                    band.bytes.resize(size_t(band.width) * size_t(band.height) * 4 * pixel_type_bytes(band.type));
+                    MPI_Irecv(band.bytes.data(), int(band.bytes.size()), MPI_BYTE, from, kTagPixels, MPI_COMM_WORLD,
+                              &request);
                     wait_politely(request);
-                    store(next, band);
+                    store(next, std::move(band));
                 }
             };
             try {
                 render([&](int b) { return b % ranks_ == 0 && failed_rank < 0; },
                        [&](int b, const Frame& band) {
                            receive_until(b);
-                           store(b, band);
+                           store(b, encode(band));
                            next = b + 1;
                        });
             } catch (const std::exception& e) {
@@ -299,23 +301,27 @@ public:
             receive_until(layout.bands());
         } else {
             int next = rank_;  // this rank's next band not yet sent
-            const auto send = [&](const Frame* band, const std::string& why) {
+            const auto send = [&](const OwnedImage* band, const std::string& why) {
                 Message m;
                 m.kind = band ? Message::done : Message::failed;
                 m.frame = frame_number;
+                m.pixel_type = band ? int32_t(band->type) : 0;
                 std::strncpy(m.text.data(), why.c_str(), m.text.size() - 1);
                 MPI_Request request;
                 MPI_Isend(&m, sizeof m, MPI_BYTE, 0, kTagBand, MPI_COMM_WORLD, &request);
                 wait_politely(request);
                 if (band) {
-                    MPI_Isend(band->pixels.data(), int(band->pixels.size() * 4), MPI_FLOAT, 0, kTagPixels,
-                              MPI_COMM_WORLD, &request);
+                    MPI_Isend(band->bytes.data(), int(band->bytes.size()), MPI_BYTE, 0, kTagPixels, MPI_COMM_WORLD,
+                              &request);
                     wait_politely(request);  // one band in flight: memory stays one band
                 }
                 next += ranks_;
             };
             try {
-                render([&](int b) { return b % ranks_ == rank_; }, [&](int, const Frame& band) { send(&band, ""); });
+                render([&](int b) { return b % ranks_ == rank_; }, [&](int, const Frame& band) {
+                    const OwnedImage encoded = encode(band);
+                    send(&encoded, "");
+                });
             } catch (const std::exception& e) {
                 failure = e.what();
             }

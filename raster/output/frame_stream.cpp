@@ -17,8 +17,7 @@ void FrameStream::wait() {
     if (in_flight_.valid()) in_flight_.get();
 }
 
-void FrameStream::write(int y, const Frame& band) {
-    OwnedImage encoded = encode_frame(path_, band);
+void FrameStream::write(int y, OwnedImage encoded) {
     wait();
     in_flight_ = std::async(std::launch::async, [this, y, encoded = std::move(encoded)] {
         TraceScope trace("write band", "io", y);

@@ -22,7 +22,9 @@ public:
 
     // Rows [y, y + band.height), continuing where the previous band ended. Throws
     // tessera::Error for this or the previous band.
-    void write(int y, const Frame& band);
+    void write(int y, const Frame& band) { write(y, encode_frame(path_, band)); }
+    // The same for a band already encoded for this file (encode_frame; e.g. by an MPI rank).
+    void write(int y, OwnedImage encoded);
     // Waits for the last band and publishes the file. Throws tessera::Error.
     void commit();
 
