@@ -28,30 +28,25 @@ for shade in id depth normal; do
 done
 
 # Usage errors: exit 2, one error line.
-expect_error() {
-    local code=$1; shift
-    err=$("$tessera" raster "$@" 2>&1 >/dev/null); got=$?
-    [ $got -eq "$code" ] || fail "'$*' exited $got, expected $code: $err"
-    [ "$(grep -c '^tessera: error: ' <<<"$err")" -eq 1 ] || fail "'$*': expected one error line: $err"
-}
-expect_error 2 --mesh "$dir/s.obj" --size 0x10
-expect_error 2 --mesh "$dir/s.obj" --size 100000x10
-expect_error 2 --mesh "$dir/s.obj" --shade toon
-expect_error 2 --mesh "$dir/s.obj" --cull sideways
-expect_error 2 --mesh "$dir/s.obj" --eye 1,2
-expect_error 2 --mesh "$dir/s.obj" --eye 0,0,0 --lookat 0,0,0
-expect_error 2 --mesh "$dir/s.obj" --near -1
-expect_error 2 --camera "$dir/s.cam"
+source "$(dirname "$0")/shell/expect_error.sh"
+expect_error 2 raster --mesh "$dir/s.obj" --size 0x10
+expect_error 2 raster --mesh "$dir/s.obj" --size 100000x10
+expect_error 2 raster --mesh "$dir/s.obj" --shade toon
+expect_error 2 raster --mesh "$dir/s.obj" --cull sideways
+expect_error 2 raster --mesh "$dir/s.obj" --eye 1,2
+expect_error 2 raster --mesh "$dir/s.obj" --eye 0,0,0 --lookat 0,0,0
+expect_error 2 raster --mesh "$dir/s.obj" --near -1
+expect_error 2 raster --camera "$dir/s.cam"
 
 # Runtime errors: exit 1 and nothing written.
-expect_error 1 --mesh "$dir/missing.obj" --out-id "$dir/none.id"
+expect_error 1 raster --mesh "$dir/missing.obj" --out-id "$dir/none.id"
 [ ! -e "$dir/none.id" ] || fail "an output was written for a failed run"
 printf 'v 0 0 0\nv 1 0 zz\nf 1 2 3\n' >"$dir/bad.obj"
-expect_error 1 --mesh "$dir/bad.obj"
+expect_error 1 raster --mesh "$dir/bad.obj"
 grep -q "line 2" <<<"$err" || fail "malformed OBJ error should name the line: $err"
 printf 'eye 0 0\n' >"$dir/bad.cam"
-expect_error 1 --mesh "$dir/s.obj" --camera "$dir/bad.cam"
-expect_error 1 --mesh "$dir/s.obj" --out-id /nonexistent-dir/x.id
+expect_error 1 raster --mesh "$dir/s.obj" --camera "$dir/bad.cam"
+expect_error 1 raster --mesh "$dir/s.obj" --out-id /nonexistent-dir/x.id
 
 # Empty meshes and NaN vertices render (nothing), they do not fail.
 printf '# nothing\n' >"$dir/empty.obj"

@@ -34,13 +34,8 @@ out=$("$tessera" raster --mesh "$dir/nan.obj" --size 16x16 --eye 0.3,0.3,2 --loo
 grep -q 'triangles_in=2' <<<"$out" || fail "no defect counts: $out"
 [ -s "$dir/nan.id" ] || fail "NaN mesh wrote no ids"
 
-expect_error() {
-    local code=$1; shift
-    err=$("$tessera" raster "$@" 2>&1 >/dev/null); got=$?
-    [ $got -eq "$code" ] || fail "'$*' exited $got, expected $code: $err"
-    [ "$(grep -c '^tessera: error: ' <<<"$err")" -eq 1 ] || fail "'$*': expected one error line: $err"
-}
-expect_error 2 --mesh "$dir/s.obj" --renderer rays
-expect_error 2 --mesh "$dir/s.obj" --renderer raytrace --cull back
-expect_error 1 --mesh "$dir/missing.obj" --renderer raytrace
+source "$(dirname "$0")/shell/expect_error.sh"
+expect_error 2 raster --mesh "$dir/s.obj" --renderer rays
+expect_error 2 raster --mesh "$dir/s.obj" --renderer raytrace --cull back
+expect_error 1 raster --mesh "$dir/missing.obj" --renderer raytrace
 echo "cli_raytrace: ok"

@@ -46,31 +46,29 @@ render --scene snakes --size 64x36 --frames 2 --threads 2 --shadows map --out "$
 cmp -s "$dir/det/map_1.png" "$dir/det/map_2.png" || fail "shadow maps differ between 1 and 2 threads"
 
 # Bad input: one error line, the exit code, nothing written.
-expect_error() {  # $1: exit code, $2: text the message must contain, rest: arguments
+source "$(dirname "$0")/shell/expect_error.sh"
+expect_render_error() {  # $1: exit code, $2: text the message must contain, rest: arguments
   local want_code=$1 want=$2; shift 2
-  local err code
-  err=$("$tessera" render --quiet "$@" 2>&1 >/dev/null); code=$?
-  [ $code -eq "$want_code" ] || fail "'$*' exited $code, expected $want_code: $err"
-  [ "$(grep -c '^tessera: error: ' <<<"$err")" -eq 1 ] || fail "'$*': expected one error line: $err"
+  expect_error "$want_code" render --quiet "$@"
   grep -qF -- "$want" <<<"$err" || fail "'$*': message should mention '$want': $err"
   [ -z "$(ls -A "$dir/bad" 2>/dev/null)" ] || fail "'$*' left files: $(ls -A "$dir/bad")"
 }
 mkdir -p "$dir/bad"
-expect_error 2 "unknown scene 'snaeks' (available: bumpcube, flag, metaballs, snakes, stress, terrain, toon" --scene snaeks --out "$dir/bad/x_####.png"
-expect_error 2 "frame" --scene flag --frames 5:2 --out "$dir/bad/x_####.png"
-expect_error 2 "frame" --scene flag --frames abc --out "$dir/bad/x_####.png"
-expect_error 2 "shard" --scene flag --shard 2/2 --out "$dir/bad/x_####.png"
-expect_error 2 "would overwrite" --scene flag --frames 1:3 --out "$dir/bad/x.png"
-expect_error 2 "no image format" --scene flag --frames 1 --out "$dir/bad/x.nope"
-expect_error 2 "--shadows" --scene flag --frames 1 --shadows soft --size 8x8 --out "$dir/bad/x.png"
+expect_render_error 2 "unknown scene 'snaeks' (available: bumpcube, flag, metaballs, snakes, stress, terrain, toon" --scene snaeks --out "$dir/bad/x_####.png"
+expect_render_error 2 "frame" --scene flag --frames 5:2 --out "$dir/bad/x_####.png"
+expect_render_error 2 "frame" --scene flag --frames abc --out "$dir/bad/x_####.png"
+expect_render_error 2 "shard" --scene flag --shard 2/2 --out "$dir/bad/x_####.png"
+expect_render_error 2 "would overwrite" --scene flag --frames 1:3 --out "$dir/bad/x.png"
+expect_render_error 2 "no image format" --scene flag --frames 1 --out "$dir/bad/x.nope"
+expect_render_error 2 "--shadows" --scene flag --frames 1 --shadows soft --size 8x8 --out "$dir/bad/x.png"
 echo '{"objects": [{"type": "sphere", "material": 3}]}' > "$dir/broken.json"
-expect_error 1 "broken.json: /objects/0/material: expected a string, got a number" --scene "$dir/broken.json" --out "$dir/bad/x.png" --frames 1
-expect_error 1 "cannot read scene file" --scene "$dir/missing.json" --out "$dir/bad/x.png" --frames 1
+expect_render_error 1 "broken.json: /objects/0/material: expected a string, got a number" --scene "$dir/broken.json" --out "$dir/bad/x.png" --frames 1
+expect_render_error 1 "cannot read scene file" --scene "$dir/missing.json" --out "$dir/bad/x.png" --frames 1
 touch "$dir/file"
-expect_error 1 "cannot write frames to" --scene flag --frames 1 --size 8x8 --out "$dir/file/x_####.png"
+expect_render_error 1 "cannot write frames to" --scene flag --frames 1 --size 8x8 --out "$dir/file/x_####.png"
 if [ -w /dev/full ]; then  # a full disk: the frame name is a link to /dev/full
   mkdir -p "$dir/full" && ln -s /dev/full "$dir/full/x.png"
-  expect_error 1 "No space left on device" --scene flag --frames 1 --size 8x8 --out "$dir/full/x.png"
+  expect_render_error 1 "No space left on device" --scene flag --frames 1 --size 8x8 --out "$dir/full/x.png"
   [ "$(ls -A "$dir/full")" = "x.png" ] || fail "a failed write left files: $(ls -A "$dir/full")"
 fi
 # Unknown keys warn (naming file and key) and the render still succeeds.

@@ -10,6 +10,7 @@ dir=$(mktemp -d)
 trap 'rm -rf "$dir"' EXIT
 render() { "$tessera" render --quiet "$@"; }
 info() { oiiotool --info -v "$1" 2>&1; }
+source "$(dirname "$0")/shell/expect_error.sh"
 
 # Wider than a viewport: one band of two regions (8192 + 64 columns).
 render --scene snakes --size 8256x64 --frames 2 --threads 1 --out "$dir/wide1.png" || fail "wide render exited $?"
@@ -33,19 +34,16 @@ grep -q "resume: 1 complete frame(s) skipped" <<<"$err" || fail "--resume did no
 if [ -w /dev/full ]; then  # a full disk: the frame name is a link to /dev/full
   for ext in png exr; do
     mkdir -p "$dir/full" && ln -sf /dev/full "$dir/full/x.$ext"
-    err=$(render --scene flag --size 8256x64 --frames 1 --out "$dir/full/x.$ext" 2>&1)
-    [ $? -eq 1 ] || fail "full disk ($ext): exit code not 1: $err"
+    expect_error 1 render --quiet --scene flag --size 8256x64 --frames 1 --out "$dir/full/x.$ext"
     grep -q "^tessera: error: cannot write '.*x.$ext'" <<<"$err" || fail "full disk ($ext): $err"
   done
   [ "$(ls -A "$dir/full" | tr '\n' ' ')" = "x.exr x.png " ] || fail "full disk left: $(ls -A "$dir/full")"
 fi
 mkdir -p "$dir/blocked/b_0001.png"
-err=$(render --scene flag --size 8256x64 --frames 1 --out "$dir/blocked/b_####.png" 2>&1)
-[ $? -eq 1 ] || fail "a directory in the frame's place: exit code not 1: $err"
+expect_error 1 render --quiet --scene flag --size 8256x64 --frames 1 --out "$dir/blocked/b_####.png"
 grep -q "^tessera: error: cannot write '.*b_0001.png'" <<<"$err" || fail "error does not name the frame: $err"
 [ -z "$(ls -A "$dir/blocked" | grep -v '^b_0001.png$')" ] || fail "left behind: $(ls -A "$dir/blocked")"
 
-err=$(render --scene flag --size 70000x64 --frames 1 --out "$dir/huge.png" 2>&1)
-[ $? -eq 2 ] || fail "70000 wide: exit code not 2: $err"
+expect_error 2 render --quiet --scene flag --size 70000x64 --frames 1 --out "$dir/huge.png"
 grep -q "at most 65536" <<<"$err" || fail "70000 wide: $err"
 echo "cli_render_large: ok"
