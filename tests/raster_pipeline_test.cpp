@@ -109,15 +109,26 @@ TEST(RasterPipeline, BarycentricsSimdEqualsScalar) {
     }
 }
 
+// A tessellated sphere filling much of a 333x201 view: neither side a multiple of a stamp
+// group (16 x 4 pixels), so tiles end in partial groups.
+constexpr int kSphereWidth = 333, kSphereHeight = 201;
+struct SphereView {
+    Mesh mesh = test_meshes::sphere(120, 60);
+    glm::mat4 vp;
+    SphereView() {
+        Camera camera;
+        camera.eye = {0.2f, 0.5f, 2.2f};
+        camera.aspect = float(kSphereWidth) / float(kSphereHeight);
+        vp = camera.view_projection();
+    }
+};
+
 // Same bytes for 1 and 2 threads and for every tile size, equal to the reference.
 TEST(RasterPipeline, DeterministicAcrossThreadsAndTileSizes) {
-    // Neither side a multiple of a stamp group (16 x 4 pixels): tiles end in partial groups.
-    const int w = 333, h = 201;
-    const Mesh mesh = test_meshes::sphere(120, 60);
-    Camera camera;
-    camera.eye = {0.2f, 0.5f, 2.2f};
-    camera.aspect = float(w) / float(h);
-    const glm::mat4 vp = camera.view_projection();
+    const int w = kSphereWidth, h = kSphereHeight;
+    const SphereView view;
+    const Mesh& mesh = view.mesh;
+    const glm::mat4& vp = view.vp;
     VisibilityBuffer reference;
     reference_rasterize(mesh, vp, Viewport(w, h), {}, reference);
     for (int threads : {1, 2}) {
@@ -136,12 +147,10 @@ TEST(RasterPipeline, DeterministicAcrossThreadsAndTileSizes) {
 // A depth-only render (shadow maps) gives the full render's depth, writes no ids, and takes
 // no passes.
 TEST(RasterPipeline, DepthOnlyGivesTheSameDepth) {
-    const int w = 333, h = 201;
-    const Mesh mesh = test_meshes::sphere(120, 60);
-    Camera camera;
-    camera.eye = {0.2f, 0.5f, 2.2f};
-    camera.aspect = float(w) / float(h);
-    const glm::mat4 vp = camera.view_projection();
+    const int w = kSphereWidth, h = kSphereHeight;
+    const SphereView view;
+    const Mesh& mesh = view.mesh;
+    const glm::mat4& vp = view.vp;
     VisibilityBuffer full, depth_only;
     Rasterizer rasterizer;
     rasterizer.render(mesh, vp, Viewport(w, h), {}, full);
