@@ -116,28 +116,25 @@ def peer_tables(directory):
         return []
     rows = [json.loads(line) for line in open(path) if line.strip()]
     md = []
-    times = [r for r in rows if r["kind"] == "time"]
-    if times:
-        md += ["### Peer: tessera raster vs Mesa llvmpipe (same workload, same threads)", "",
-               "| workload | size | shade | threads | tessera ms | llvmpipe ms | llvmpipe / tessera |",
-               "|---|---|---|---:|---:|---:|---:|"]
-        for r in times:
-            ratio = "%.2f" % (r["llvmpipe_ms"] / r["tessera_ms"]) if r["tessera_ms"] else "-"
+
+    # One table per kind of figure: wall time per frame, and CPU time per frame.
+    def comparison(kind, heading, unit, suffix):
+        chosen = [r for r in rows if r["kind"] == kind]
+        if not chosen:
+            return
+        md.extend([heading, "",
+                   f"| workload | size | shade | threads | tessera {unit} | llvmpipe {unit} | llvmpipe / tessera |",
+                   "|---|---|---|---:|---:|---:|---:|"])
+        for r in chosen:
+            t, l = r["tessera" + suffix], r["llvmpipe" + suffix]
+            ratio = "%.2f" % (l / t) if t else "-"
             md.append(f"| {r['workload']} | {r['size']} | {r['shade']} | {r['threads']} | "
-                      f"{r['tessera_ms'] if r['tessera_ms'] is not None else '-'} | "
-                      f"{r['llvmpipe_ms']} | {ratio} |")
+                      f"{t if t is not None else '-'} | {l} | {ratio} |")
         md.append("")
-    cpu = [r for r in rows if r["kind"] == "cpu"]
-    if cpu:
-        md += ["CPU time per frame (all threads; steadier than wall time on a shared machine):", "",
-               "| workload | size | shade | threads | tessera CPU ms | llvmpipe CPU ms | llvmpipe / tessera |",
-               "|---|---|---|---:|---:|---:|---:|"]
-        for r in cpu:
-            t = r["tessera_cpu_ms"]
-            ratio = "%.2f" % (r["llvmpipe_cpu_ms"] / t) if t else "-"
-            md.append(f"| {r['workload']} | {r['size']} | {r['shade']} | {r['threads']} | "
-                      f"{t if t is not None else '-'} | {r['llvmpipe_cpu_ms']} | {ratio} |")
-        md.append("")
+
+    comparison("time", "### Peer: tessera raster vs Mesa llvmpipe (same workload, same threads)", "ms", "_ms")
+    comparison("cpu", "CPU time per frame (all threads; steadier than wall time on a shared machine):",
+               "CPU ms", "_cpu_ms")
     ids = [r for r in rows if r["kind"] == "ids"]
     if ids:
         md += ["| workload | size | pixels whose triangle id differs |", "|---|---|---:|"]
