@@ -105,6 +105,10 @@ struct FrameRenderer::Impl {
             if (p.kind == PassSpec::Kind::terrain) terrains.emplace_back(p.terrain);
     }
 
+    // One frame's bracket: resets the stats, prepares what the frame's regions share, runs
+    // body(state, stats), and times the whole.
+    template <class Body>
+    void frame(float time, FrameStats* stats, const Body& body);
     void prepare(float time, FrameState& frame, FrameStats& stats);
     // Renders `region` into `colour` (resized to region.width x region.height), shading only
     // the tiles that meet rows [rows_from, rows_to) of the region.
@@ -129,21 +133,28 @@ void FrameRenderer::set_rows(int first, int last) {
     impl_->rows_last = last;
 }
 
-Frame FrameRenderer::render(float time, FrameStats* stats) {
-    Impl& im = *impl_;
-    if (needs_bands(im.width, im.height))
-        throw std::invalid_argument("a " + std::to_string(im.width) + "x" + std::to_string(im.height) +
-                                    " frame is rendered in bands (render_bands)");
+template <class Body>
+void FrameRenderer::Impl::frame(float time, FrameStats* stats, const Body& body) {
     FrameStats local;
     FrameStats& st = stats ? *stats : local;
     const auto t_frame = Clock::now();
     st = FrameStats{};
     FrameState state;
-    im.prepare(time, state, st);
-    Frame frame(im.width, im.height);
-    im.render_region(state, Region{im.scene.scene.camera, im.width, im.height}, frame.pixels, im.rows_first,
-                     im.rows_last, st);
+    prepare(time, state, st);
+    body(state, st);
     st.total_ms = ms_since(t_frame);
+}
+
+Frame FrameRenderer::render(float time, FrameStats* stats) {
+    Impl& im = *impl_;
+    if (needs_bands(im.width, im.height))
+        throw std::invalid_argument("a " + std::to_string(im.width) + "x" + std::to_string(im.height) +
+                                    " frame is rendered in bands (render_bands)");
+    Frame frame(im.width, im.height);
+    im.frame(time, stats, [&](const FrameState& state, FrameStats& st) {
+        im.render_region(state, Region{im.scene.scene.camera, im.width, im.height}, frame.pixels, im.rows_first,
+                         im.rows_last, st);
+    });
     return frame;
 }
 
@@ -154,31 +165,27 @@ void FrameRenderer::render_bands(float time, const BandLayout& layout, const Ban
         layout.region_width <= 0 || layout.region_width > kMaxViewport || layout.band_rows > kMaxViewport)
         throw std::invalid_argument("render_bands: the band layout does not fit the renderer's " +
                                     std::to_string(im.width) + "x" + std::to_string(im.height) + " frame");
-    FrameStats local;
-    FrameStats& st = stats ? *stats : local;
-    const auto t_frame = Clock::now();
-    st = FrameStats{};
-    FrameState state;
-    im.prepare(time, state, st);
-    const Camera& camera = im.scene.scene.camera;
-    std::vector<glm::vec4> region;
-    for (int b = 0; b < layout.bands(); ++b) {
-        if (!mine(b)) continue;
-        const auto [y0, y1] = layout.rows(b);
-        const int rows = y1 - y0;
-        Frame band(layout.width, rows);
-        for (int x0 = 0; x0 < layout.width; x0 += layout.region_width) {
-            const int w = std::min(layout.region_width, layout.width - x0);
-            TraceScope trace("region", "region", x0, y0);
-            im.render_region(state, Region{camera.region(im.width, im.height, x0, y0, w, rows), w, rows}, region,
-                             0, rows, st);
-            for (int y = 0; y < rows; ++y)
-                std::copy_n(region.begin() + ptrdiff_t(y) * w, w, band.pixels.begin() + ptrdiff_t(y) * layout.width + x0);
+    im.frame(time, stats, [&](const FrameState& state, FrameStats& st) {
+        const Camera& camera = im.scene.scene.camera;
+        std::vector<glm::vec4> region;
+        for (int b = 0; b < layout.bands(); ++b) {
+            if (!mine(b)) continue;
+            const auto [y0, y1] = layout.rows(b);
+            const int rows = y1 - y0;
+            Frame band(layout.width, rows);
+            for (int x0 = 0; x0 < layout.width; x0 += layout.region_width) {
+                const int w = std::min(layout.region_width, layout.width - x0);
+                TraceScope trace("region", "region", x0, y0);
+                im.render_region(state, Region{camera.region(im.width, im.height, x0, y0, w, rows), w, rows},
+                                 region, 0, rows, st);
+                for (int y = 0; y < rows; ++y)
+                    std::copy_n(region.begin() + ptrdiff_t(y) * w, w,
+                                band.pixels.begin() + ptrdiff_t(y) * layout.width + x0);
+            }
+            TraceScope trace("deliver band", "band", b);
+            deliver(b, band);
         }
-        TraceScope trace("deliver band", "band", b);
-        deliver(b, band);
-    }
-    st.total_ms = ms_since(t_frame);
+    });
 }
 
 void FrameRenderer::Impl::prepare(float time, FrameState& frame, FrameStats& stats) {
