@@ -14,7 +14,7 @@
 #include "raster/march/procedural_surfaces.h"
 #include "raster/march/sphere_field.h"
 #include "raster/march/surface_normal.h"
-#include "raster/rasterizer.h"
+#include "raster/pipeline/rasterizer.h"
 
 using namespace tessera;
 using namespace tessera::march;
@@ -188,8 +188,8 @@ BENCHMARK(BM_FogPass)->Arg(0)->Arg(1)->ArgName("height");
 
 void BM_BackgroundSky(benchmark::State& state) {
     const RayGenerator rays(view({0.0f, 1.0f, 4.0f}, {0, 0, 0}), W, H);
-    Background sky;
-    sky.kind = Background::Kind::sky;
+    scene::Background sky;
+    sky.kind = scene::Background::Kind::sky;
     const BackgroundPass pass(rays, sky);
     std::vector<float> depth(W * H, 1.0f);
     std::vector<glm::vec4> colour(W * H);
@@ -218,12 +218,12 @@ void BM_MarchFrame(benchmark::State& state) {
     }
     constexpr int FW = 960, FH = 540;
     const march::MarchScene scene(settings, FW, FH);
-    const std::vector<TilePass> passes = scene.passes();
-    Rasterizer rasterizer;
+    const std::vector<pipeline::TilePass> passes = scene.passes();
+    pipeline::Rasterizer rasterizer;
     VisibilityBuffer visibility;
     std::vector<glm::vec4> colour;
     for (auto _ : state) {
-        rasterizer.render(Mesh{}, scene.camera().view_projection(), Viewport(FW, FH), RasterOptions{}, visibility,
+        rasterizer.render(Mesh{}, scene.camera().view_projection(), pipeline::Viewport(FW, FH), pipeline::RasterOptions{}, visibility,
                           passes, &colour);
         benchmark::DoNotOptimize(colour.data());
     }

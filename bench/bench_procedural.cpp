@@ -1,5 +1,5 @@
 // Procedural generators: reaction-diffusion cell-steps per second (library step at 1 and 2
-// threads vs the plain scalar step of rd_reference.h), a copy-bandwidth run that gives the RD
+// threads vs the plain scalar step of procedural/reaction_diffusion_reference.h), a copy-bandwidth run that gives the RD
 // memory roofline, noise samples per second, and heightfield generation.
 //
 // RD roofline: a cell-step reads A and B (8 bytes) and writes A' and B' (8 bytes); the copy
@@ -17,7 +17,7 @@
 #include <cstring>
 #include <vector>
 
-#include "bench/rd_reference.h"
+#include "procedural/reaction_diffusion_reference.h"
 #include "procedural/field.h"
 #include "procedural/fractal_batch.h"
 #include "procedural/hash.h"

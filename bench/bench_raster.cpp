@@ -16,14 +16,14 @@
 #include <map>
 #include <memory>
 
-#include "raster/bin.h"
-#include "raster/camera.h"
-#include "raster/primitive_stage.h"
-#include "raster/rasterizer.h"
-#include "raster/reference_shading.h"
-#include "raster/stamp_shading.h"
-#include "raster/test_meshes.h"
-#include "raster/vertex_stage.h"
+#include "raster/pipeline/bin.h"
+#include "raster/core/camera.h"
+#include "raster/pipeline/primitive_stage.h"
+#include "raster/pipeline/rasterizer.h"
+#include "raster/shade/reference_shading.h"
+#include "raster/shade/stamp_shading.h"
+#include "raster/workloads/test_meshes.h"
+#include "raster/pipeline/vertex_stage.h"
 
 namespace {
 
@@ -36,8 +36,8 @@ const Mesh& fill_rate_mesh(int leg, size_t count) {
     static std::map<std::pair<int, size_t>, std::unique_ptr<Mesh>> cache;
     auto& slot = cache[{leg, count}];
     if (!slot)
-        slot = std::make_unique<Mesh>(test_meshes::to_world(
-            test_meshes::fill_rate(7, count, float(leg), 1920, 1080), kIdentity, 1920, 1080));
+        slot = std::make_unique<Mesh>(workloads::to_world(
+            workloads::fill_rate(7, count, float(leg), 1920, 1080), kIdentity, 1920, 1080));
     return *slot;
 }
 
@@ -48,7 +48,7 @@ const Mesh& sphere_mesh(size_t triangles) {
     if (!slot) {
         const int rings = std::max(4, int(std::sqrt(double(triangles) / 4.0)));
         const int segments = int(triangles / (2 * size_t(rings - 1)));
-        slot = std::make_unique<Mesh>(test_meshes::sphere(segments, rings));
+        slot = std::make_unique<Mesh>(workloads::sphere(segments, rings));
     }
     return *slot;
 }
@@ -69,9 +69,9 @@ void BM_FillRate(benchmark::State& state) {
     const size_t count = leg <= 25 ? (1u << 20) : leg <= 50 ? (1u << 19) : (1u << 16);
     const Mesh& mesh = fill_rate_mesh(leg, count);
     tbb::global_control limit(tbb::global_control::max_allowed_parallelism, size_t(threads));
-    Rasterizer rasterizer;
+    pipeline::Rasterizer rasterizer;
     VisibilityBuffer vis;
-    const Viewport viewport(1920, 1080);
+    const pipeline::Viewport viewport(1920, 1080);
     rasterizer.render(mesh, kIdentity, viewport, {}, vis);  // warm-up: allocations, page faults
     for (auto _ : state) {
         rasterizer.render(mesh, kIdentity, viewport, {}, vis);
@@ -95,12 +95,12 @@ void BM_Frame(benchmark::State& state) {
     const int threads = int(state.range(2));
     const Mesh& mesh = sphere_mesh(triangles);
     tbb::global_control limit(tbb::global_control::max_allowed_parallelism, size_t(threads));
-    Rasterizer rasterizer;
+    pipeline::Rasterizer rasterizer;
     VisibilityBuffer vis;
-    const Viewport viewport(width, height);
+    const pipeline::Viewport viewport(width, height);
     const glm::mat4 vp = sphere_camera(width, height);
-    RasterOptions options;
-    options.cull = CullMode::back;
+    pipeline::RasterOptions options;
+    options.cull = pipeline::CullMode::back;
     rasterizer.render(mesh, vp, viewport, options, vis);  // warm-up: allocations, page faults
     for (auto _ : state) {
         rasterizer.render(mesh, vp, viewport, options, vis);
@@ -126,14 +126,14 @@ void BM_FramePhong(benchmark::State& state) {
     tbb::global_control limit(tbb::global_control::max_allowed_parallelism, 1);
     const Camera camera = sphere_view(width, height);
     std::vector<uint8_t> rgb8(size_t(width) * height * 3);
-    const TilePass pass = simd ? make_stamp_shading_pass(ShadeMode::phong, camera, rgb8)
-                               : make_reference_shading_pass(ShadeMode::phong, camera, rgb8);
-    Rasterizer rasterizer;
+    const pipeline::TilePass pass = simd ? shade::make_stamp_shading_pass(shade::ShadeMode::phong, camera, rgb8)
+                               : shade::make_reference_shading_pass(shade::ShadeMode::phong, camera, rgb8);
+    pipeline::Rasterizer rasterizer;
     VisibilityBuffer vis;
-    RasterOptions options;
-    options.cull = CullMode::back;
+    pipeline::RasterOptions options;
+    options.cull = pipeline::CullMode::back;
     options.tile_color = !simd;  // what tessera raster does with each pass
-    const Viewport viewport(width, height);
+    const pipeline::Viewport viewport(width, height);
     rasterizer.render(mesh, camera.view_projection(), viewport, options, vis, {&pass, 1});  // warm-up
     for (auto _ : state) {
         rasterizer.render(mesh, camera.view_projection(), viewport, options, vis, {&pass, 1});
@@ -151,18 +151,18 @@ BENCHMARK(BM_FramePhong)
 void BM_Setup(benchmark::State& state) {
     const size_t triangles = size_t(state.range(0)) * 1000;
     const Mesh& mesh = sphere_mesh(triangles);
-    const Viewport viewport(1920, 1080);
+    const pipeline::Viewport viewport(1920, 1080);
     const glm::mat4 vp = sphere_camera(1920, 1080);
     tbb::global_control limit(tbb::global_control::max_allowed_parallelism, 1);
-    ClipVertices vertices;
-    std::vector<TriangleSetup> setups;
-    RasterOptions options;
-    options.cull = CullMode::back;
+    pipeline::ClipVertices vertices;
+    std::vector<pipeline::TriangleSetup> setups;
+    pipeline::RasterOptions options;
+    options.cull = pipeline::CullMode::back;
     for (auto _ : state) {
-        run_vertex_stage(mesh, vp, viewport, vertices);
+        pipeline::run_vertex_stage(mesh, vp, viewport, vertices);
         setups.clear();
-        RasterStats stats;
-        run_primitive_stage(mesh, vertices, viewport, options, 0, uint32_t(mesh.triangle_count()), setups, stats);
+        pipeline::RasterStats stats;
+        pipeline::run_primitive_stage(mesh, vertices, viewport, options, 0, uint32_t(mesh.triangle_count()), setups, stats);
         benchmark::DoNotOptimize(setups.data());
     }
     state.counters["tri/s"] =
@@ -172,16 +172,16 @@ BENCHMARK(BM_Setup)->ArgName("ktris")->Arg(100)->Arg(1000)->Unit(benchmark::kMil
 
 // One chunk holding the back-face-culled setups of the 1080p sphere frame: the input of the
 // binning and tile-stage benchmarks, which measure those stages alone.
-ChunkBins sphere_setups(size_t triangles) {
+pipeline::ChunkBins sphere_setups(size_t triangles) {
     const Mesh& mesh = sphere_mesh(triangles);
-    const Viewport viewport(1920, 1080);
-    ClipVertices vertices;
-    run_vertex_stage(mesh, sphere_camera(1920, 1080), viewport, vertices);
-    ChunkBins chunk;
-    RasterStats stats;
-    RasterOptions options;
-    options.cull = CullMode::back;
-    run_primitive_stage(mesh, vertices, viewport, options, 0, uint32_t(mesh.triangle_count()), chunk.setups, stats);
+    const pipeline::Viewport viewport(1920, 1080);
+    pipeline::ClipVertices vertices;
+    pipeline::run_vertex_stage(mesh, sphere_camera(1920, 1080), viewport, vertices);
+    pipeline::ChunkBins chunk;
+    pipeline::RasterStats stats;
+    pipeline::RasterOptions options;
+    options.cull = pipeline::CullMode::back;
+    pipeline::run_primitive_stage(mesh, vertices, viewport, options, 0, uint32_t(mesh.triangle_count()), chunk.setups, stats);
     return chunk;
 }
 
@@ -189,8 +189,8 @@ ChunkBins sphere_setups(size_t triangles) {
 void BM_Binning(benchmark::State& state) {
     const size_t triangles = size_t(state.range(0)) * 1000;
     const int tile = int(state.range(1));
-    ChunkBins chunk = sphere_setups(triangles);
-    const TileGrid grid(1920, 1080, tile);
+    pipeline::ChunkBins chunk = sphere_setups(triangles);
+    const pipeline::TileGrid grid(1920, 1080, tile);
     std::vector<uint32_t> scratch;
     for (auto _ : state) {
         chunk.bin(grid, scratch);
@@ -209,18 +209,18 @@ BENCHMARK(BM_Binning)
 void BM_TileRaster(benchmark::State& state) {
     const size_t triangles = size_t(state.range(0)) * 1000;
     const int tile = int(state.range(1));
-    ChunkBins chunk = sphere_setups(triangles);
-    const TileGrid grid(1920, 1080, tile);
+    pipeline::ChunkBins chunk = sphere_setups(triangles);
+    const pipeline::TileGrid grid(1920, 1080, tile);
     std::vector<uint32_t> scratch;
     chunk.bin(grid, scratch);
-    TileBuffers buffers;
+    pipeline::TileBuffers buffers;
     for (auto _ : state) {
         for (int t = 0; t < grid.count(); ++t) {
             const int tx = t % grid.tiles_x, ty = t / grid.tiles_x;
-            const TileRect rect{tx * tile, ty * tile, std::min((tx + 1) * tile, 1920), std::min((ty + 1) * tile, 1080)};
+            const pipeline::TileRect rect{tx * tile, ty * tile, std::min((tx + 1) * tile, 1920), std::min((ty + 1) * tile, 1080)};
             buffers.clear(tile);
-            for (const TriangleSetup* e = chunk.begin(t); e != chunk.end(t); ++e)
-                rasterize_opaque(*e, rect, buffers);
+            for (const pipeline::TriangleSetup* e = chunk.begin(t); e != chunk.end(t); ++e)
+                pipeline::rasterize_opaque(*e, rect, buffers);
             benchmark::DoNotOptimize(buffers.depth.data());
         }
     }

@@ -25,18 +25,18 @@
 #include "raster/embree/ray_cast.h"
 #include "raster/embree/scene.h"
 #include "raster/embree/shadow_rays.h"
-#include "raster/rasterizer.h"
+#include "raster/pipeline/rasterizer.h"
 #include "raster/shadow/light_mask.h"
 #include "raster/shadow/shadow_map.h"
-#include "raster/sphere_grid.h"
+#include "raster/workloads/sphere_grid.h"
 
 namespace {
 
 using namespace tessera;
 
 struct Fixture {
-    SphereGridScene grid;
-    std::unique_ptr<rt::RayScene> scene;
+    workloads::SphereGridScene grid;
+    std::unique_ptr<embree::RayScene> scene;
 };
 
 Fixture& fixture(int64_t triangles) {
@@ -44,8 +44,8 @@ Fixture& fixture(int64_t triangles) {
     auto& slot = cache[triangles];
     if (!slot) {
         slot = std::make_unique<Fixture>();
-        slot->grid = make_sphere_grid(size_t(triangles));
-        slot->scene = std::make_unique<rt::RayScene>(rt::default_ray_device(), slot->grid.mesh);
+        slot->grid = workloads::make_sphere_grid(size_t(triangles));
+        slot->scene = std::make_unique<embree::RayScene>(embree::default_ray_device(), slot->grid.mesh);
     }
     return *slot;
 }
@@ -65,9 +65,9 @@ const VisibilityBuffer& visibility(int64_t triangles, int64_t height) {
     auto [it, fresh] = cache.try_emplace({triangles, height});
     if (fresh) {
         const Fixture& f = fixture(triangles);
-        Rasterizer rasterizer;
+        pipeline::Rasterizer rasterizer;
         rasterizer.render(f.grid.mesh, view_projection(f, height),
-                          Viewport(width_for(height), int(height)), RasterOptions{}, it->second);
+                          pipeline::Viewport(width_for(height), int(height)), pipeline::RasterOptions{}, it->second);
     }
     return it->second;
 }
@@ -98,33 +98,33 @@ void BM_RasterVisibility(benchmark::State& state) {
     Fixture& f = fixture(tris);
     const glm::mat4 vp = view_projection(f, height);
     const auto cap = cap_threads(state.range(3));
-    Rasterizer rasterizer;
+    pipeline::Rasterizer rasterizer;
     VisibilityBuffer vis;
     for (auto _ : state) {
-        rasterizer.render(f.grid.mesh, vp, Viewport(width_for(height), int(height)),
-                          RasterOptions{}, vis);
+        rasterizer.render(f.grid.mesh, vp, pipeline::Viewport(width_for(height), int(height)),
+                          pipeline::RasterOptions{}, vis);
         benchmark::DoNotOptimize(vis.triangle.data());
     }
     state.counters["triangles"] = double(f.grid.mesh.triangle_count());
 }
 
-void primary(benchmark::State& state, rt::RayPacket packet) {
+void primary(benchmark::State& state, embree::RayPacket packet) {
     const int64_t tris = state.range(0), height = state.range(1);
     Fixture& f = fixture(tris);
     const glm::mat4 vp = view_projection(f, height);
     const auto cap = cap_threads(state.range(3));
     VisibilityBuffer vis;
     for (auto _ : state) {
-        rt::cast_primary_rays(*f.scene, vp, width_for(height), int(height), vis, packet);
+        embree::cast_primary_rays(*f.scene, vp, width_for(height), int(height), vis, packet);
         benchmark::DoNotOptimize(vis.triangle.data());
     }
     set_rays(state, double(width_for(height)) * double(height));
     state.counters["triangles"] = double(f.grid.mesh.triangle_count());
 }
 
-void BM_EmbreePrimary(benchmark::State& state) { primary(state, rt::RayPacket::x16); }
-void BM_EmbreePrimary8(benchmark::State& state) { primary(state, rt::RayPacket::x8); }
-void BM_EmbreePrimarySingle(benchmark::State& state) { primary(state, rt::RayPacket::single); }
+void BM_EmbreePrimary(benchmark::State& state) { primary(state, embree::RayPacket::x16); }
+void BM_EmbreePrimary8(benchmark::State& state) { primary(state, embree::RayPacket::x8); }
+void BM_EmbreePrimarySingle(benchmark::State& state) { primary(state, embree::RayPacket::single); }
 
 // --- Shadows from a visibility buffer ----------------------------------------------------------
 
@@ -155,7 +155,7 @@ void shadow_maps(benchmark::State& state, bool render_maps) {
     const glm::mat4 vp = view_projection(f, height);
     const std::vector<glm::vec3> light_list = lights(f, state.range(2));
     const auto cap = cap_threads(state.range(3));
-    Rasterizer rasterizer;
+    pipeline::Rasterizer rasterizer;
     shadow::ShadowMapOptions options;
     options.resolution = kShadowMapSize;
     std::vector<shadow::ShadowMap> maps;
@@ -176,7 +176,7 @@ void BM_ShadowMapLookups(benchmark::State& state) { shadow_maps(state, false); }
 void BM_ShadowMapRender(benchmark::State& state) {
     Fixture& f = fixture(state.range(0));
     const auto cap = cap_threads(state.range(3));
-    Rasterizer rasterizer;
+    pipeline::Rasterizer rasterizer;
     shadow::ShadowMapOptions options;
     options.resolution = int(state.range(1));
     shadow::ShadowMap map(rasterizer, f.grid.mesh, f.grid.light, options);
@@ -186,14 +186,14 @@ void BM_ShadowMapRender(benchmark::State& state) {
     }
 }
 
-void shadow_rays(benchmark::State& state, rt::RayPacket packet) {
+void shadow_rays(benchmark::State& state, embree::RayPacket packet) {
     const int64_t tris = state.range(0), height = state.range(1);
     Fixture& f = fixture(tris);
     const VisibilityBuffer& vis = visibility(tris, height);
     const glm::mat4 vp = view_projection(f, height);
     const std::vector<glm::vec3> light_list = lights(f, state.range(2));
     const auto cap = cap_threads(state.range(3));
-    const shadow::LightTest test = rt::shadow_ray_test(*f.scene, packet);
+    const shadow::LightTest test = embree::shadow_ray_test(*f.scene, packet);
     for (auto _ : state) {
         const auto mask = shadow::compute_light_mask(vis, f.grid.mesh, vp, light_list, test);
         benchmark::DoNotOptimize(mask.bits.data());
@@ -203,10 +203,10 @@ void shadow_rays(benchmark::State& state, rt::RayPacket packet) {
     set_rays(state, double(covered) * double(light_list.size()));  // upper bound: facing only
 }
 
-void BM_EmbreeShadowRays(benchmark::State& state) { shadow_rays(state, rt::RayPacket::x16); }
-void BM_EmbreeShadowRays8(benchmark::State& state) { shadow_rays(state, rt::RayPacket::x8); }
+void BM_EmbreeShadowRays(benchmark::State& state) { shadow_rays(state, embree::RayPacket::x16); }
+void BM_EmbreeShadowRays8(benchmark::State& state) { shadow_rays(state, embree::RayPacket::x8); }
 void BM_EmbreeShadowRaysSingle(benchmark::State& state) {
-    shadow_rays(state, rt::RayPacket::single);
+    shadow_rays(state, embree::RayPacket::single);
 }
 
 // A rasterized frame with shadows: visibility by the rasterizer, then shadow maps (2048^2)
@@ -217,18 +217,18 @@ void raster_frame(benchmark::State& state, bool rays) {
     const glm::mat4 vp = view_projection(f, height);
     const std::vector<glm::vec3> light_list = lights(f, state.range(2));
     const auto cap = cap_threads(state.range(3));
-    Rasterizer rasterizer;
+    pipeline::Rasterizer rasterizer;
     VisibilityBuffer vis;
     shadow::ShadowMapOptions options;
     options.resolution = kShadowMapSize;
-    const shadow::LightTest ray_test = rt::shadow_ray_test(*f.scene);
+    const shadow::LightTest ray_test = embree::shadow_ray_test(*f.scene);
     std::vector<shadow::ShadowMap> maps;
     if (!rays)
         for (const glm::vec3& light : light_list)
             maps.emplace_back(rasterizer, f.grid.mesh, light, options);
     for (auto _ : state) {
-        rasterizer.render(f.grid.mesh, vp, Viewport(width_for(height), int(height)),
-                          RasterOptions{}, vis);
+        rasterizer.render(f.grid.mesh, vp, pipeline::Viewport(width_for(height), int(height)),
+                          pipeline::RasterOptions{}, vis);
         for (size_t l = 0; l < maps.size(); ++l)
             maps[l].render(rasterizer, f.grid.mesh, light_list[l]);
         const auto mask = shadow::compute_light_mask(
@@ -247,10 +247,10 @@ void BM_EmbreeFrame(benchmark::State& state) {
     const glm::mat4 vp = view_projection(f, height);
     const std::vector<glm::vec3> light_list = lights(f, state.range(2));
     const auto cap = cap_threads(state.range(3));
-    const shadow::LightTest test = rt::shadow_ray_test(*f.scene);
+    const shadow::LightTest test = embree::shadow_ray_test(*f.scene);
     VisibilityBuffer vis;
     for (auto _ : state) {
-        rt::cast_primary_rays(*f.scene, vp, width_for(height), int(height), vis);
+        embree::cast_primary_rays(*f.scene, vp, width_for(height), int(height), vis);
         const auto mask = shadow::compute_light_mask(vis, f.grid.mesh, vp, light_list, test);
         benchmark::DoNotOptimize(mask.bits.data());
     }
@@ -258,11 +258,11 @@ void BM_EmbreeFrame(benchmark::State& state) {
 
 // --- BVH build and per-frame update --------------------------------------------------------
 
-void build(benchmark::State& state, rt::BvhUpdate quality) {
+void build(benchmark::State& state, embree::BvhUpdate quality) {
     Fixture& f = fixture(state.range(0));
     const auto cap = cap_threads(state.range(3));
     for (auto _ : state) {
-        const rt::RayScene scene(rt::default_ray_device(), f.grid.mesh, quality);
+        const embree::RayScene scene(embree::default_ray_device(), f.grid.mesh, quality);
         benchmark::DoNotOptimize(scene.handle());
     }
     state.counters["Mprims/s"] =
@@ -271,20 +271,20 @@ void build(benchmark::State& state, rt::BvhUpdate quality) {
 }
 
 // A fresh MEDIUM-quality build (static scenes) and a LOW-quality one (the rebuild option).
-void BM_BvhBuildMedium(benchmark::State& state) { build(state, rt::BvhUpdate::none); }
-void BM_BvhBuildLow(benchmark::State& state) { build(state, rt::BvhUpdate::rebuild); }
+void BM_BvhBuildMedium(benchmark::State& state) { build(state, embree::BvhUpdate::none); }
+void BM_BvhBuildLow(benchmark::State& state) { build(state, embree::BvhUpdate::rebuild); }
 
 // One animation step: move the vertices (not timed), then refit or rebuild the BVH.
-void update(benchmark::State& state, rt::BvhUpdate mode) {
+void update(benchmark::State& state, embree::BvhUpdate mode) {
     Fixture& f = fixture(state.range(0));
-    SphereGridScene grid = f.grid;  // a private copy: the animation moves its vertices
-    rt::reserve_ray_padding(grid.mesh);
+    workloads::SphereGridScene grid = f.grid;  // a private copy: the animation moves its vertices
+    embree::reserve_ray_padding(grid.mesh);
     const auto cap = cap_threads(state.range(3));
-    rt::RayScene scene(rt::default_ray_device(), grid.mesh, mode);
+    embree::RayScene scene(embree::default_ray_device(), grid.mesh, mode);
     float time = 0.0f;
     for (auto _ : state) {
         state.PauseTiming();
-        ripple_spheres(grid, time += 0.04f);
+        workloads::ripple_spheres(grid, time += 0.04f);
         state.ResumeTiming();
         scene.update();
     }
@@ -298,42 +298,42 @@ void update(benchmark::State& state, rt::BvhUpdate mode) {
 void BM_MeshDefects(benchmark::State& state) {
     Fixture& f = fixture(state.range(0));
     const auto cap = cap_threads(state.range(3));
-    for (auto _ : state) benchmark::DoNotOptimize(rt::find_mesh_defects(f.grid.mesh));
+    for (auto _ : state) benchmark::DoNotOptimize(embree::find_mesh_defects(f.grid.mesh));
 }
 
-void BM_BvhRefit(benchmark::State& state) { update(state, rt::BvhUpdate::refit); }
-void BM_BvhRebuild(benchmark::State& state) { update(state, rt::BvhUpdate::rebuild); }
+void BM_BvhRefit(benchmark::State& state) { update(state, embree::BvhUpdate::refit); }
+void BM_BvhRebuild(benchmark::State& state) { update(state, embree::BvhUpdate::rebuild); }
 
 // One animated frame: move the vertices (not timed), update the BVH, find visibility (Embree
 // primary rays, or the rasterizer) and trace shadow rays. Reports the update's share of the
 // timed frame (the "refit <= 10%" target).
-void animated_frame(benchmark::State& state, rt::BvhUpdate mode, bool rasterize) {
+void animated_frame(benchmark::State& state, embree::BvhUpdate mode, bool rasterize) {
     const int64_t height = state.range(1);
     Fixture& f = fixture(state.range(0));
-    SphereGridScene grid = f.grid;
-    rt::reserve_ray_padding(grid.mesh);
+    workloads::SphereGridScene grid = f.grid;
+    embree::reserve_ray_padding(grid.mesh);
     const auto cap = cap_threads(state.range(3));
-    rt::RayScene scene(rt::default_ray_device(), grid.mesh, mode);
+    embree::RayScene scene(embree::default_ray_device(), grid.mesh, mode);
     const glm::mat4 vp = view_projection(f, height);
     const std::vector<glm::vec3> light_list = lights(f, state.range(2));
-    const shadow::LightTest test = rt::shadow_ray_test(scene);
+    const shadow::LightTest test = embree::shadow_ray_test(scene);
     VisibilityBuffer vis;
-    Rasterizer rasterizer;
+    pipeline::Rasterizer rasterizer;
     using clock = std::chrono::steady_clock;
     double update_s = 0.0, frame_s = 0.0;
     float time = 0.0f;
     for (auto _ : state) {
         state.PauseTiming();
-        ripple_spheres(grid, time += 0.04f);
+        workloads::ripple_spheres(grid, time += 0.04f);
         state.ResumeTiming();
         const auto start = clock::now();
         scene.update();
         const auto updated = clock::now();
         if (rasterize)
-            rasterizer.render(grid.mesh, vp, Viewport(width_for(height), int(height)),
-                              RasterOptions{}, vis);
+            rasterizer.render(grid.mesh, vp, pipeline::Viewport(width_for(height), int(height)),
+                              pipeline::RasterOptions{}, vis);
         else
-            rt::cast_primary_rays(scene, vp, width_for(height), int(height), vis);
+            embree::cast_primary_rays(scene, vp, width_for(height), int(height), vis);
         const auto mask = shadow::compute_light_mask(vis, grid.mesh, vp, light_list, test);
         benchmark::DoNotOptimize(mask.bits.data());
         update_s += std::chrono::duration<double>(updated - start).count();
@@ -345,16 +345,16 @@ void animated_frame(benchmark::State& state, rt::BvhUpdate mode, bool rasterize)
 }
 
 void BM_AnimatedFrameRefit(benchmark::State& state) {
-    animated_frame(state, rt::BvhUpdate::refit, false);
+    animated_frame(state, embree::BvhUpdate::refit, false);
 }
 void BM_AnimatedFrameRebuild(benchmark::State& state) {
-    animated_frame(state, rt::BvhUpdate::rebuild, false);
+    animated_frame(state, embree::BvhUpdate::rebuild, false);
 }
 void BM_AnimatedRasterFrameRefit(benchmark::State& state) {
-    animated_frame(state, rt::BvhUpdate::refit, true);
+    animated_frame(state, embree::BvhUpdate::refit, true);
 }
 void BM_AnimatedRasterFrameRebuild(benchmark::State& state) {
-    animated_frame(state, rt::BvhUpdate::rebuild, true);
+    animated_frame(state, embree::BvhUpdate::rebuild, true);
 }
 
 // --- Sweeps ------------------------------------------------------------------------------------

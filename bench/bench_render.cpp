@@ -11,6 +11,7 @@
 #include <string>
 
 #include "raster/render/frame_renderer.h"
+#include "raster/scene_file/scene_build.h"
 #include "raster/scene_file/scene_parse.h"
 
 namespace {
@@ -20,22 +21,22 @@ using namespace tessera;
 const std::filesystem::path kScenes = TESSERA_SCENE_DIR;
 
 // Built once per scene: reaction-diffusion skins take a second or two to grow.
-AnimatedScene& scene(const std::string& name) {
-    static std::map<std::string, std::unique_ptr<AnimatedScene>> cache;
+render::AnimatedScene& scene(const std::string& name) {
+    static std::map<std::string, std::unique_ptr<render::AnimatedScene>> cache;
     auto& slot = cache[name];
     if (!slot) {
         std::vector<std::string> warnings;
-        slot = std::make_unique<AnimatedScene>(build_scene(load_scene_file(kScenes / (name + ".json"), warnings)));
+        slot = std::make_unique<render::AnimatedScene>(scene_file::build_scene(scene_file::load_scene_file(kScenes / (name + ".json"), warnings)));
     }
     return *slot;
 }
 
 void frames(benchmark::State& state, const std::string& name, int width, int height) {
-    const auto renderer = state.range(0) == 0 ? RendererKind::raster : RendererKind::raytrace;
-    const ShadowMode shadows[] = {ShadowMode::none, ShadowMode::map, ShadowMode::rays};
-    FrameRenderer r(scene(name), width, height, renderer, shadows[state.range(1)]);
+    const auto renderer = state.range(0) == 0 ? render::RendererKind::raster : render::RendererKind::raytrace;
+    const render::ShadowMode shadows[] = {render::ShadowMode::none, render::ShadowMode::map, render::ShadowMode::rays};
+    render::FrameRenderer r(scene(name), width, height, renderer, shadows[state.range(1)]);
     int frame = 0;
-    FrameStats stats;
+    render::FrameStats stats;
     for (auto _ : state) {
         Frame f = r.render(float(frame++) / 24.0f, &stats);
         benchmark::DoNotOptimize(f.pixels.data());

@@ -14,7 +14,7 @@
 
 #include "raster/geometry/param_surface.h"
 #include "raster/geometry/surfaces.h"
-#include "raster/rasterizer.h"
+#include "raster/pipeline/rasterizer.h"
 #include "raster/render/frame_renderer.h"
 #include "raster/scene_file/scene_build.h"
 #include "raster/shade/frame_shading.h"
@@ -27,15 +27,15 @@ using namespace tessera;
 
 constexpr int kWidth = 1920, kHeight = 1080;
 
-Texture checker(int size) {
+texture::Texture checker(int size) {
     std::vector<glm::vec4> t(size_t(size) * size_t(size));
     for (int y = 0; y < size; ++y)
         for (int x = 0; x < size; ++x)
             t[size_t(y * size + x)] = ((x / 8 + y / 8) & 1) ? glm::vec4(0.9f, 0.8f, 0.6f, 1) : glm::vec4(0.2f, 0.3f, 0.5f, 1);
-    return Texture(size, size, std::move(t));
+    return texture::Texture(size, size, std::move(t));
 }
 
-Texture bumps(int size) {
+texture::Texture bumps(int size) {
     std::vector<glm::vec4> t(size_t(size) * size_t(size));
     for (int y = 0; y < size; ++y)
         for (int x = 0; x < size; ++x) {
@@ -43,33 +43,33 @@ Texture bumps(int size) {
             const glm::vec3 n = glm::normalize(glm::vec3(-0.3f * std::cos(a) * std::sin(b), -0.3f * std::sin(a) * std::cos(b), 1));
             t[size_t(y * size + x)] = glm::vec4(n * 0.5f + 0.5f, 1.0f);
         }
-    return Texture(size, size, std::move(t));
+    return texture::Texture(size, size, std::move(t));
 }
 
 // A sphere of `n` x `n/2` quads filling most of a 1080p view, two lights, one material whose
 // model and textures the benchmark picks.
-Scene sphere_scene(int n) {
-    Scene s;
+scene::Scene sphere_scene(int n) {
+    scene::Scene s;
     s.camera.eye = {0, 0, 2.6f};
     s.camera.aspect = float(kWidth) / float(kHeight);
-    s.lights = {point_light({2, 2, 3}, glm::vec3(0.1f), glm::vec3(0.9f)),
-                directional_light({-1, 0.5f, 1}, glm::vec3(0.05f), glm::vec3(0.3f))};
+    s.lights = {scene::point_light({2, 2, 3}, glm::vec3(0.1f), glm::vec3(0.9f)),
+                scene::directional_light({-1, 0.5f, 1}, glm::vec3(0.05f), glm::vec3(0.3f))};
     s.textures.push_back(checker(512));
     s.textures.push_back(bumps(512));
-    s.materials.push_back(Material{});
-    s.objects.push_back(Object{"sphere", std::make_shared<const Mesh>(tessellate(sphere_surface({0, 0, 0}, 1.0f), n, n / 2)),
+    s.materials.push_back(scene::Material{});
+    s.objects.push_back(scene::Object{"sphere", std::make_shared<const Mesh>(geometry::tessellate(geometry::sphere_surface({0, 0, 0}, 1.0f), n, n / 2)),
                                0, {}, {}});
     return s;
 }
 
 struct Fixture {
-    Scene scene = sphere_scene(256);
-    BakedScene baked = bake(scene);
-    std::vector<CoveredPixel> pixels;
+    scene::Scene scene = sphere_scene(256);
+    scene::BakedScene baked = scene::bake(scene);
+    std::vector<shade::CoveredPixel> pixels;
     Fixture() {
-        Rasterizer r;
+        pipeline::Rasterizer r;
         VisibilityBuffer vis;
-        r.render(baked.mesh, scene.camera.view_projection(), Viewport(kWidth, kHeight), RasterOptions{}, vis);
+        r.render(baked.mesh, scene.camera.view_projection(), pipeline::Viewport(kWidth, kHeight), pipeline::RasterOptions{}, vis);
         for (int y = 0; y < kHeight; ++y)
             for (int x = 0; x < kWidth; ++x)
                 if (const uint32_t t = vis.triangle[size_t(y) * kWidth + size_t(x)]; t != kNoTriangle)
@@ -83,10 +83,10 @@ Fixture& fixture() {
 }
 
 // Mode: 0 flat, 1 gouraud, 2 phong, 3 toon, 4 phong + diffuse texture, 5 phong + normal map.
-void configure(Material& m, int mode) {
-    m = Material{};
-    m.model = mode == 0 ? ShadingModel::flat : mode == 1 ? ShadingModel::gouraud : mode == 3 ? ShadingModel::toon
-                                                                                             : ShadingModel::phong;
+void configure(scene::Material& m, int mode) {
+    m = scene::Material{};
+    m.model = mode == 0 ? scene::ShadingModel::flat : mode == 1 ? scene::ShadingModel::gouraud : mode == 3 ? scene::ShadingModel::toon
+                                                                                             : scene::ShadingModel::phong;
     if (mode == 4) m.diffuse_texture = 0;
     if (mode == 5) m.normal_texture = 1;
 }
@@ -102,7 +102,7 @@ void BM_ShadePixels(benchmark::State& state) {
     Fixture& f = fixture();
     configure(f.scene.materials[0], mode);
     tbb::global_control one(tbb::global_control::max_allowed_parallelism, 1);
-    const FrameShading shading(f.baked, f.scene, RenderState{f.scene.camera, kWidth, kHeight, f.scene.lights});
+    const shade::FrameShading shading(f.baked, f.scene, shade::RenderState{f.scene.camera, kWidth, kHeight, f.scene.lights});
     std::vector<glm::vec4> out(f.pixels.size());
     for (auto _ : state) {
         if (reference) shading.shade_reference(f.pixels, out);
@@ -121,13 +121,13 @@ BENCHMARK(BM_ShadePixels)
     ->Unit(benchmark::kMillisecond);
 
 void BM_TextureSample(benchmark::State& state) {
-    const auto filter = TextureFilter(state.range(0));
-    static const Texture texture = checker(1024);
+    const auto filter = texture::TextureFilter(state.range(0));
+    static const texture::Texture texture = checker(1024);
     std::mt19937 rng(3);
     std::uniform_real_distribution<float> uv(-2.0f, 2.0f), scale(0.1f, 8.0f);
     struct Query {
         glm::vec2 uv;
-        UvDerivatives d;
+        texture::UvDerivatives d;
     };
     std::vector<Query> queries(1 << 16);
     for (Query& q : queries) {
@@ -136,7 +136,7 @@ void BM_TextureSample(benchmark::State& state) {
     }
     glm::vec4 sum(0.0f);
     for (auto _ : state) {
-        for (const Query& q : queries) sum += sample(texture, q.uv, q.d, filter, TextureWrap::repeat);
+        for (const Query& q : queries) sum += texture::sample(texture, q.uv, q.d, filter, texture::TextureWrap::repeat);
         benchmark::DoNotOptimize(sum);
     }
     static const char* names[] = {"nearest", "bilinear", "mipmap", "trilinear"};
@@ -148,8 +148,8 @@ BENCHMARK(BM_TextureSample)->DenseRange(0, 3)->Unit(benchmark::kMicrosecond);
 
 // The same queries kLanes at a time through the gathering sampler (sampler_simd.h).
 void BM_TextureSampleSimd(benchmark::State& state) {
-    const auto filter = TextureFilter(state.range(0));
-    static const Texture texture = checker(1024);
+    const auto filter = texture::TextureFilter(state.range(0));
+    static const texture::Texture texture = checker(1024);
     constexpr int L = simd::kLanes;
     std::mt19937 rng(3);
     std::uniform_real_distribution<float> uv(-2.0f, 2.0f), scale(0.1f, 8.0f);
@@ -163,14 +163,14 @@ void BM_TextureSampleSimd(benchmark::State& state) {
             b.v[i] = uv(rng);
             b.d[i] = scale(rng) / 1024.0f;
         }
-    using shade::vfloat;
+    using simd::vfloat;
     vfloat sum(0.0f);
     for (auto _ : state) {
         for (const Block& b : blocks) {
             const vfloat d = vfloat::load(b.d);
-            const shade::TexelLanes t = shade::sample_lanes(texture, vfloat::load(b.u), vfloat::load(b.v), d,
+            const texture::TexelLanes t = texture::sample_lanes(texture, vfloat::load(b.u), vfloat::load(b.v), d,
                                                             vfloat(0.0f), vfloat(0.0f), d * vfloat(0.7f), filter,
-                                                            TextureWrap::repeat);
+                                                            texture::TextureWrap::repeat);
             sum = sum + t.r;
         }
         benchmark::DoNotOptimize(sum);
@@ -187,9 +187,9 @@ BENCHMARK(BM_TextureSampleSimd)->DenseRange(0, 3)->Unit(benchmark::kMicrosecond)
 void BM_PhongFrame1080p(benchmark::State& state) {
     const int threads = int(state.range(0));
     tbb::global_control limit(tbb::global_control::max_allowed_parallelism, size_t(threads));
-    static AnimatedScene scene = still_scene(sphere_scene(1000));
-    FrameRenderer renderer(scene, kWidth, kHeight, RendererKind::raster, ShadowMode::none);
-    FrameStats stats;
+    static render::AnimatedScene scene = render::still_scene(sphere_scene(1000));
+    render::FrameRenderer renderer(scene, kWidth, kHeight, render::RendererKind::raster, render::ShadowMode::none);
+    render::FrameStats stats;
     for (auto _ : state) {
         const Frame f = renderer.render(0.0f, &stats);
         benchmark::DoNotOptimize(f.pixels.data());

@@ -27,9 +27,9 @@
 #include "procedural/rd_initial.h"
 #include "procedural/rd_presets.h"
 #include "procedural/reaction_diffusion.h"
-#include "raster/error.h"
-#include "raster/image_io.h"
-#include "raster/output/frame_sequence.h"
+#include "raster/core/error.h"
+#include "raster/io/image_io.h"
+#include "examples/frame_sequence.h"
 
 namespace tessera::cli {
 namespace {
@@ -79,7 +79,7 @@ bool float_format(const fs::path& path) {
 
 void check_output(const std::string& out) {
     if (out.empty()) throw UsageError("--out FILE is required");
-    if (!image_format_supported(out))
+    if (!io::image_format_supported(out))
         throw UsageError("cannot write '" + out + "': no image format for extension '" +
                          fs::path(out).extension().string() + "' (use .png, .exr or .tif)");
 }
@@ -110,7 +110,7 @@ int list_presets() {
     return 0;
 }
 
-tp::Grid image_to_grid(const FloatImage& image) {
+tp::Grid image_to_grid(const io::FloatImage& image) {
     tp::Grid g(image.width, image.height);
     const int colour = std::min(image.channels, 3);  // ignore alpha
     for (int y = 0; y < image.height; ++y)
@@ -163,7 +163,7 @@ int run_rd(const Options& o) {
     tp::RdState initial;
     if (o.init == "image") {
         if (o.init_image.empty()) throw UsageError("--init image needs --init-image FILE");
-        tp::Grid image = image_to_grid(read_image(o.init_image));
+        tp::Grid image = image_to_grid(io::read_image(o.init_image));
         if (image.width != width || image.height != height)
             throw UsageError("--init-image is " + std::to_string(image.width) + "x" +
                              std::to_string(image.height) + ", --size is " + o.size);
@@ -190,7 +190,7 @@ int run_rd(const Options& o) {
         }
         const std::vector<uint8_t> rgb = tp::rd_colorize(rd.state());
         const fs::path file = o.frames > 1 ? pattern.path_for(frame) : fs::path(o.out);
-        write_image(file, {width, height, 3, PixelType::u8, rgb.data()});
+        io::write_image(file, {width, height, 3, io::PixelType::u8, rgb.data()});
     }
     progress.finish();
     return 0;
@@ -222,13 +222,13 @@ int run_heightfield(const Options& o) {
         tp::erode_thermal(heights, erosion);
     }
     if (float_format(o.out)) {
-        write_image(o.out, {width, height, 1, PixelType::f32, heights.values.data()});
+        io::write_image(o.out, {width, height, 1, io::PixelType::f32, heights.values.data()});
     } else {
         // 16-bit integer formats (PNG): quantise [0, 1] to the full 0..65535 range.
         std::vector<uint16_t> q(heights.size());
         for (size_t i = 0; i < q.size(); ++i)
             q[i] = uint16_t(std::lround(std::clamp(heights.values[i], 0.0f, 1.0f) * 65535.0f));
-        write_image(o.out, {width, height, 1, PixelType::u16, q.data()});
+        io::write_image(o.out, {width, height, 1, io::PixelType::u16, q.data()});
     }
     return 0;
 }
@@ -237,7 +237,7 @@ int run_normalmap(const Options& o) {
     if (o.in.empty()) throw UsageError("--in HEIGHT is required");
     check_output(o.out);
     require_finite(o.strength, "--strength");
-    const FloatImage image = read_image(o.in);
+    const io::FloatImage image = io::read_image(o.in);
     check_memory(image.width, image.height, 12 + 4, "normal map");
     const tp::Grid heights = image_to_grid(image);
     for (float v : heights.values)
@@ -247,10 +247,10 @@ int run_normalmap(const Options& o) {
     if (float_format(o.out)) {
         std::vector<float> encoded(normals.xyz.size());
         for (size_t i = 0; i < encoded.size(); ++i) encoded[i] = normals.xyz[i] * 0.5f + 0.5f;
-        write_image(o.out, {normals.width, normals.height, 3, PixelType::f32, encoded.data()});
+        io::write_image(o.out, {normals.width, normals.height, 3, io::PixelType::f32, encoded.data()});
     } else {
         const std::vector<uint8_t> rgb = tp::encode_normals_rgb8(normals);
-        write_image(o.out, {normals.width, normals.height, 3, PixelType::u8, rgb.data()});
+        io::write_image(o.out, {normals.width, normals.height, 3, io::PixelType::u8, rgb.data()});
     }
     return 0;
 }

@@ -14,8 +14,8 @@
 
 #include "examples/command.h"
 #include "raster/march/march_scene.h"
-#include "raster/output/frame.h"
-#include "raster/rasterizer.h"
+#include "raster/output/frame_encoding.h"
+#include "raster/pipeline/rasterizer.h"
 
 namespace tessera::cli {
 namespace {
@@ -103,25 +103,25 @@ Run define_march(CLI::App& root) {
         s.fog.colour = parse_rgb(o->fog_colour, "--fog-colour");
         s.fog.falloff = o->fog_falloff;
         s.fog.base_height = o->fog_base;
-        if (!image_format_supported(o->output))
+        if (!io::image_format_supported(o->output))
             throw UsageError("--output: no image writer for '" + o->output + "'");
 
         if (!o->cube_map.empty()) {
-            s.background.kind = Background::Kind::cube_map;
-            s.background.cube = load_cube_map(o->cube_map);
+            s.background.kind = scene::Background::Kind::cube_map;
+            s.background.cube = scene::load_cube_map(o->cube_map);
         }
 
         const auto threads = limit_threads(o->threads);
         const auto start = std::chrono::steady_clock::now();
         const march::MarchScene scene(s, width, height);
-        const std::vector<TilePass> passes = scene.passes();
-        Rasterizer rasterizer;
+        const std::vector<pipeline::TilePass> passes = scene.passes();
+        pipeline::Rasterizer rasterizer;
         VisibilityBuffer visibility;
         Frame frame(width, height);
-        rasterizer.render(Mesh{}, scene.camera().view_projection(), Viewport(width, height), RasterOptions{},
+        rasterizer.render(Mesh{}, scene.camera().view_projection(), pipeline::Viewport(width, height), pipeline::RasterOptions{},
                           visibility, passes, &frame.pixels);
         const double ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
-        write_frame(o->output, frame);
+        output::write_frame(o->output, frame);
         std::printf("wrote %s (%dx%d, %s, %.1f ms render)\n", o->output.c_str(), width, height, o->scene.c_str(), ms);
         return 0;
     };

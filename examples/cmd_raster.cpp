@@ -13,12 +13,12 @@
 #include "raster/embree/ray_cast.h"
 #include "raster/embree/scene.h"
 #include "raster/embree/tile_passes.h"
-#include "raster/image_io.h"
-#include "raster/obj_loader.h"
-#include "raster/rasterizer.h"
-#include "raster/reference_shading.h"
-#include "raster/stamp_shading.h"
-#include "raster/visibility_io.h"
+#include "raster/io/image_io.h"
+#include "raster/io/obj_loader.h"
+#include "raster/pipeline/rasterizer.h"
+#include "raster/shade/reference_shading.h"
+#include "raster/shade/stamp_shading.h"
+#include "raster/io/visibility_io.h"
 
 namespace tessera::cli {
 namespace {
@@ -35,7 +35,7 @@ struct Options {
     std::string renderer = "raster";
 };
 
-void print_stats(const RasterStats& s, double shade_ms) {
+void print_stats(const pipeline::RasterStats& s, double shade_ms) {
     std::printf("stats: vertex_ms=%.3f clip_setup_bin_ms=%.3f raster_ms=%.3f shade_ms=%.3f total_ms=%.3f\n",
                 s.vertex_ms, s.setup_bin_ms, s.raster_ms, shade_ms, s.total_ms);
     std::printf("stats: triangles_in=%llu invalid=%llu outside=%llu clipped=%llu zero_area=%llu "
@@ -49,53 +49,53 @@ void print_stats(const RasterStats& s, double shade_ms) {
 int run(const Options& o) {
     int width = 0, height = 0;
     parse_size(o.size, "--size", width, height);
-    const CullMode cull = parse_cull(o.cull);
-    const ShadeMode shade = parse_shade_mode(o.shade);
+    const pipeline::CullMode cull = parse_cull(o.cull);
+    const shade::ShadeMode shade = shade::parse_shade_mode(o.shade);
     for (const std::string* path : {&o.out_color})
-        if (!path->empty() && !image_format_supported(*path))
+        if (!path->empty() && !io::image_format_supported(*path))
             throw UsageError("--out-color: no image writer for '" + *path + "'");
-    const Viewport viewport(width, height);  // checks the size limits
+    const pipeline::Viewport viewport(width, height);  // checks the size limits
 
     const Camera camera = make_camera(o.camera, width, height);
 
     const bool raytrace = o.renderer == "raytrace";
-    if (raytrace && (cull != CullMode::none || o.tile))
+    if (raytrace && (cull != pipeline::CullMode::none || o.tile))
         throw UsageError("--cull and --tile apply to --renderer raster only");
 
-    ObjLoadStats load;
-    Mesh mesh = load_obj(o.mesh, &load);
-    if (raytrace) rt::reserve_ray_padding(mesh);  // lets Embree share the vertex buffer
+    io::ObjLoadStats load;
+    Mesh mesh = io::load_obj(o.mesh, &load);
+    if (raytrace) embree::reserve_ray_padding(mesh);  // lets Embree share the vertex buffer
     const auto threads = limit_threads(o.threads);
 
-    RasterOptions options;
+    pipeline::RasterOptions options;
     options.cull = cull;
     if (o.tile) options.tile_size = o.tile;
     options.tile_color = false;  // the pass writes rgb8 itself
-    Rasterizer rasterizer;
+    pipeline::Rasterizer rasterizer;
     VisibilityBuffer visibility;
     std::vector<uint8_t> rgb8(size_t(width) * height * 3);
-    const TilePass passes[] = {make_stamp_shading_pass(shade, camera, rgb8)};
+    const pipeline::TilePass passes[] = {shade::make_stamp_shading_pass(shade, camera, rgb8)};
     const glm::mat4 view_projection = camera.view_projection();
 
     const int frames = std::max(1, o.repeat);
     std::vector<double> frame_ms;
-    RasterStats stats;
+    pipeline::RasterStats stats;
     // The ray-cast frame: BVH built once (static mesh), then per frame primary rays and the
     // same tile passes. Its --stats line reports the BVH and the mesh defects Embree skips.
-    std::unique_ptr<rt::RayScene> scene;
+    std::unique_ptr<embree::RayScene> scene;
     double build_ms = 0, trace_ms = 0, shade_ms = 0;
     if (raytrace) {
-        const rt::RayDevice& device = rt::default_ray_device();  // created outside the timing
+        const embree::RayDevice& device = embree::default_ray_device();  // created outside the timing
         const auto start = std::chrono::steady_clock::now();
-        scene = std::make_unique<rt::RayScene>(device, mesh);
+        scene = std::make_unique<embree::RayScene>(device, mesh);
         build_ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
     }
     for (int f = 0; f < frames; ++f) {
         const auto start = std::chrono::steady_clock::now();
         if (raytrace) {
-            rt::cast_primary_rays(*scene, view_projection, width, height, visibility);
+            embree::cast_primary_rays(*scene, view_projection, width, height, visibility);
             const auto traced = std::chrono::steady_clock::now();
-            rt::run_tile_passes(mesh, view_projection, viewport, visibility, passes);
+            embree::run_tile_passes(mesh, view_projection, viewport, visibility, passes);
             trace_ms = std::chrono::duration<double, std::milli>(traced - start).count();
             shade_ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - traced).count();
         } else {
@@ -105,16 +105,16 @@ int run(const Options& o) {
     }
 
     if (!o.out_color.empty())
-        write_image(o.out_color, ImageView{width, height, 3, PixelType::u8, rgb8.data()});
-    if (!o.out_id.empty()) write_tsid(o.out_id, visibility);
-    if (!o.out_depth.empty()) write_depth_pfm(o.out_depth, visibility);
+        io::write_image(o.out_color, io::ImageView{width, height, 3, io::PixelType::u8, rgb8.data()});
+    if (!o.out_id.empty()) io::write_tsid(o.out_id, visibility);
+    if (!o.out_depth.empty()) io::write_depth_pfm(o.out_depth, visibility);
 
     if (o.repeat > 0) print_frame_times(frame_ms);
     if (o.stats) {
         std::printf("stats: obj_faces=%zu obj_triangles=%zu bad_vertices=%zu skipped_triangles=%zu\n", load.faces,
                     load.triangles, load.bad_vertices, load.skipped_triangles);
         if (raytrace) {
-            const rt::MeshDefects& d = scene->defects();
+            const embree::MeshDefects& d = scene->defects();
             std::printf("stats: bvh_build_ms=%.3f trace_ms=%.3f shade_ms=%.3f\n", build_ms, trace_ms, shade_ms);
             std::printf("stats: triangles_in=%zu nonfinite=%zu bad_index=%zu degenerate=%zu\n",
                         mesh.triangle_count(), d.nonfinite, d.bad_index, d.degenerate);

@@ -29,18 +29,18 @@
 #include "examples/distribute.h"
 #include "examples/progress.h"
 #include "examples/render_farm.h"
-#include "raster/error.h"
-#include "raster/farm/frame_claim.h"
-#include "raster/image_io.h"
-#include "raster/output/frame.h"
+#include "raster/core/error.h"
+#include "examples/farm/frame_claim.h"
+#include "raster/io/image_io.h"
+#include "raster/output/frame_encoding.h"
 #include "raster/output/frame_stream.h"
-#include "raster/output/frame_sequence.h"
+#include "examples/frame_sequence.h"
 #include "raster/output/frame_writer.h"
 #include "raster/render/frame_renderer.h"
 #include "raster/scene_file/scene_build.h"
 #include "raster/scene_file/scene_library.h"
 #include "raster/scene_file/scene_parse.h"
-#include "raster/trace.h"
+#include "raster/core/trace.h"
 
 namespace tessera::cli {
 namespace {
@@ -109,9 +109,9 @@ double median(std::vector<double> v) {
 int run(const Options& o, const std::string& executable) {
     const auto guard = limit_threads(o.threads);
     // Scene.
-    const fs::path file = find_scene(o.scene, scene_directories(TESSERA_SCENE_DIR, executable));
+    const fs::path file = scene_file::find_scene(o.scene, scene_file::scene_directories(TESSERA_SCENE_DIR, executable));
     std::vector<std::string> warnings;
-    SceneSpec spec = load_scene_file(file, warnings);
+    scene_file::SceneSpec spec = scene_file::load_scene_file(file, warnings);
     for (const std::string& w : warnings) std::fprintf(stderr, "tessera: warning: %s\n", w.c_str());
     const std::string scene_name = file.stem().string();
 
@@ -130,10 +130,10 @@ int run(const Options& o, const std::string& executable) {
     if (!pattern.has_placeholder() && range.count() > 1)
         throw UsageError("--out '" + pattern.text() + "' has no #### or %04d, but " + std::to_string(range.count()) +
                          " frames would overwrite it");
-    if (!image_format_supported(pattern.path_for(range.first)))
+    if (!io::image_format_supported(pattern.path_for(range.first)))
         throw UsageError("--out '" + pattern.text() + "': no image format for that extension (use .png, .exr or .tif)");
-    const RendererKind renderer = parse_renderer(o.renderer);
-    const ShadowMode shadows = parse_shadow_mode(o.shadows.empty() ? spec.shadows : o.shadows);
+    const render::RendererKind renderer = render::parse_renderer(o.renderer);
+    const render::ShadowMode shadows = render::parse_shadow_mode(o.shadows.empty() ? spec.shadows : o.shadows);
     const DistributeMode mode = parse_distribute(o.farm.distribute);
     if (mode == DistributeMode::tiles && o.farm.claim)
         throw UsageError("--claim works on whole frames: not with --distribute tiles");
@@ -149,7 +149,7 @@ int run(const Options& o, const std::string& executable) {
     }
     for (int f : shard_frames) {
         const fs::path path = pattern.path_for(f);
-        if (!(o.resume && image_is_complete(path, width, height))) {
+        if (!(o.resume && io::image_is_complete(path, width, height))) {
             frames.push_back(f);
             continue;
         }
@@ -167,15 +167,15 @@ int run(const Options& o, const std::string& executable) {
 
     Trace trace;
     if (!o.trace.empty()) trace.activate();
-    AnimatedScene scene = [&] {
+    render::AnimatedScene scene = [&] {
         TraceScope t("build scene");
-        return build_scene(std::move(spec));
+        return scene_file::build_scene(spec);
     }();
-    FrameRenderer frame_renderer(scene, width, height, renderer, shadows);
-    FrameWriter writer(2);
-    FarmRun farm(o.farm, o.resume, scene, scene_name, pattern.path_for(range.first));
-    const bool banded = needs_bands(width, height);
-    const BandLayout layout = band_layout(width, height);
+    render::FrameRenderer frame_renderer(scene, width, height, renderer, shadows);
+    output::FrameWriter writer(2);
+    FarmRun farm(o.farm, o.resume, scene, spec.textures, scene_name, pattern.path_for(range.first));
+    const bool banded = render::needs_bands(width, height);
+    const render::BandLayout layout = render::band_layout(width, height);
     if (!banded) {
         const auto [rows_first, rows_last] = dist.rows(height);
         frame_renderer.set_rows(rows_first, rows_last);
@@ -208,18 +208,18 @@ int run(const Options& o, const std::string& executable) {
         const int f = *next;
         const fs::path path = pattern.path_for(f);
         if (!farm.claim(path, width, height)) continue;
-        FrameStats st;
+        render::FrameStats st;
         if (banded) {
             // Rendered band by band and streamed into the file (on rank 0 in tiles mode); the
             // file is created with the first band and published with the last.
-            std::optional<FrameStream> file;
-            const auto encode = [&](const Frame& band) { return encode_frame(path, band); };
-            const auto write = [&](int b, OwnedImage band) {
+            std::optional<output::FrameStream> file;
+            const auto encode = [&](const Frame& band) { return output::encode_frame(path, band); };
+            const auto write = [&](int b, output::OwnedImage band) {
                 if (!file) file.emplace(path, width, height);
                 file->write(layout.rows(b).first, std::move(band));
                 if (b + 1 == layout.bands()) file->commit();
             };
-            const auto render = [&](const FrameRenderer::BandFilter& mine, const FrameRenderer::BandSink& deliver) {
+            const auto render = [&](const render::FrameRenderer::BandFilter& mine, const render::FrameRenderer::BandSink& deliver) {
                 farm.simulate(f);
                 TraceScope t("frame", "frame", f);
                 frame_renderer.render_bands(float(f) / fps, layout, mine, deliver, &st);
@@ -253,7 +253,7 @@ int run(const Options& o, const std::string& executable) {
                 break;
             }
             try {
-                writer.submit(path, encode_frame(path, frame));
+                writer.submit(path, output::encode_frame(path, frame));
                 submitted.emplace_back(path, f);
             } catch (const Error& e) {
                 if (dist.ranks() == 1) throw;

@@ -13,10 +13,10 @@
 #include "raster/embree/ray_cast.h"
 #include "raster/embree/scene.h"
 #include "raster/embree/shadow_rays.h"
-#include "raster/rasterizer.h"
+#include "raster/pipeline/rasterizer.h"
 #include "raster/shadow/mask_compare.h"
 #include "raster/shadow/shadow_map.h"
-#include "raster/sphere_grid.h"
+#include "raster/workloads/sphere_grid.h"
 
 namespace tessera::cli {
 namespace {
@@ -36,7 +36,7 @@ double milliseconds_since(std::chrono::steady_clock::time_point start) {
         .count();
 }
 
-std::vector<glm::vec3> scene_lights(const SphereGridScene& grid, int count) {
+std::vector<glm::vec3> scene_lights(const workloads::SphereGridScene& grid, int count) {
     const float e = float(grid.grid);
     const std::vector<glm::vec3> all = {grid.light, {-0.7f * e, 1.2f * e, 0.4f * e},
                                         {0.2f * e, 1.8f * e, -0.8f * e},
@@ -50,22 +50,22 @@ int run(const Options& o) {
     const auto cap = limit_threads(o.threads);
     using clock = std::chrono::steady_clock;
 
-    SphereGridScene grid = make_sphere_grid(o.triangles, float(width) / float(height));
+    workloads::SphereGridScene grid = workloads::make_sphere_grid(o.triangles, float(width) / float(height));
     const glm::mat4 vp = grid.camera.view_projection();
     const std::vector<glm::vec3> lights = scene_lights(grid, o.lights);
 
-    Rasterizer rasterizer;
+    pipeline::Rasterizer rasterizer;
     VisibilityBuffer raster_vis;
     auto start = clock::now();
-    rasterizer.render(grid.mesh, vp, Viewport(width, height), RasterOptions{}, raster_vis);
+    rasterizer.render(grid.mesh, vp, pipeline::Viewport(width, height), pipeline::RasterOptions{}, raster_vis);
     const double raster_ms = milliseconds_since(start);
 
     start = clock::now();
-    const rt::RayScene scene(rt::default_ray_device(), grid.mesh);
+    const embree::RayScene scene(embree::default_ray_device(), grid.mesh);
     const double build_ms = milliseconds_since(start);
     VisibilityBuffer ray_vis;
     start = clock::now();
-    rt::cast_primary_rays(scene, vp, width, height, ray_vis);
+    embree::cast_primary_rays(scene, vp, width, height, ray_vis);
     const double cast_ms = milliseconds_since(start);
     size_t id_differ = 0;
     for (size_t p = 0; p < raster_vis.triangle.size(); ++p)
@@ -79,7 +79,7 @@ int run(const Options& o) {
     const double map_ms = milliseconds_since(start);
     start = clock::now();
     const shadow::LightMask by_rays =
-        shadow::compute_light_mask(raster_vis, grid.mesh, vp, lights, rt::shadow_ray_test(scene));
+        shadow::compute_light_mask(raster_vis, grid.mesh, vp, lights, embree::shadow_ray_test(scene));
     const double rays_ms = milliseconds_since(start);
     const shadow::LightMask grazing = shadow::compute_light_mask(
         raster_vis, grid.mesh, vp, lights, shadow::grazing_lights(o.grazing));

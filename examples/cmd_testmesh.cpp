@@ -10,10 +10,10 @@
 #include <string>
 
 #include "examples/command.h"
-#include "raster/atomic_file.h"
-#include "raster/camera.h"
-#include "raster/obj_loader.h"
-#include "raster/test_meshes.h"
+#include "raster/core/atomic_file.h"
+#include "raster/core/camera.h"
+#include "raster/io/obj_loader.h"
+#include "raster/workloads/test_meshes.h"
 
 namespace tessera::cli {
 namespace {
@@ -44,18 +44,18 @@ int run(const Options& o) {
         // The benchmark sphere (bench_raster.cpp): about `count` triangles filling the view.
         const int rings = std::max(4, int(std::sqrt(double(o.count) / 4.0)));
         const int segments = std::max(3, int(o.count / (2 * size_t(rings - 1))));
-        mesh = test_meshes::sphere(segments, rings);
+        mesh = workloads::sphere(segments, rings);
         camera.eye = {0.0f, 0.4f, 2.6f};
         camera.fovy_deg = 50.0f;
     } else if (o.kind == "fillrate" || o.kind == "random") {
         const auto window = o.kind == "fillrate"
-                                ? test_meshes::fill_rate(o.seed, o.count, float(o.leg), width, height)
-                                : test_meshes::random_triangles(o.seed, o.count, width, height, float(o.leg));
-        mesh = test_meshes::to_world(window, camera.view_projection(), width, height);
+                                ? workloads::fill_rate(o.seed, o.count, float(o.leg), width, height)
+                                : workloads::random_triangles(o.seed, o.count, width, height, float(o.leg));
+        mesh = workloads::to_world(window, camera.view_projection(), width, height);
     } else {
         throw UsageError("--kind expects sphere, fillrate or random, got '" + o.kind + "'");
     }
-    write_obj(o.out, mesh);
+    io::write_obj(o.out, mesh);
     if (!o.camera_out.empty()) write_file_atomically(o.camera_out, camera_text(camera));
     std::printf("wrote %s: %zu vertices, %zu triangles\n", o.out.c_str(), mesh.vertex_count(), mesh.triangle_count());
     return 0;

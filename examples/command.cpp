@@ -5,7 +5,7 @@
 #include <cstdio>
 #include <sstream>
 
-#include "raster/camera_file.h"
+#include "raster/io/camera_file.h"
 
 namespace tessera::cli {
 
@@ -64,7 +64,7 @@ void add_camera_options(CLI::App& command, CameraFlags& flags) {
 
 Camera make_camera(const CameraFlags& flags, int width, int height) {
     Camera camera;
-    if (!flags.file.empty()) read_camera_file(flags.file, camera);
+    if (!flags.file.empty()) io::read_camera_file(flags.file, camera);
     if (!flags.eye.empty()) camera.eye = parse_vec3(flags.eye, "--eye");
     if (!flags.lookat.empty()) camera.lookat = parse_vec3(flags.lookat, "--lookat");
     if (!flags.up.empty()) camera.up = parse_vec3(flags.up, "--up");
@@ -72,14 +72,14 @@ Camera make_camera(const CameraFlags& flags, int width, int height) {
     if (flags.near) camera.near = *flags.near;
     if (flags.far) camera.far = *flags.far;
     camera.aspect = float(width) / float(height);
-    validate_camera(camera);
+    io::validate_camera(camera);
     return camera;
 }
 
-CullMode parse_cull(const std::string& text) {
-    if (text == "none") return CullMode::none;
-    if (text == "back") return CullMode::back;
-    if (text == "front") return CullMode::front;
+pipeline::CullMode parse_cull(const std::string& text) {
+    if (text == "none") return pipeline::CullMode::none;
+    if (text == "back") return pipeline::CullMode::back;
+    if (text == "front") return pipeline::CullMode::front;
     throw UsageError("--cull expects none, back or front, got '" + text + "'");
 }
 

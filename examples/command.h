@@ -15,8 +15,8 @@
 #include <string>
 #include <vector>
 
-#include "raster/camera.h"
-#include "raster/triangle_setup.h"
+#include "raster/core/camera.h"
+#include "raster/pipeline/triangle_setup.h"
 
 namespace tessera::cli {
 
@@ -44,7 +44,7 @@ const std::vector<Entry>& registered_commands();
 // Parses "WxH" ("1920x1080") into positive sizes; throws UsageError naming `flag` otherwise.
 void parse_size(const std::string& text, const char* flag, int& width, int& height);
 
-// The camera flags of `tessera raster`, shared with the llvmpipe peer (bench/peer), which must
+// The camera flags of `tessera raster`, shared with the llvmpipe peer (examples/peer), which must
 // accept the same command lines: --camera FILE, then --eye/--lookat/--up x,y,z and --fov,
 // --near, --far override what the file says.
 struct CameraFlags {
@@ -59,7 +59,7 @@ void add_camera_options(CLI::App& command, CameraFlags& flags);
 Camera make_camera(const CameraFlags& flags, int width, int height);
 
 // "none" | "back" | "front" (--cull); UsageError otherwise.
-CullMode parse_cull(const std::string& text);
+pipeline::CullMode parse_cull(const std::string& text);
 
 // Prints "frame_ms median=X min=Y max=Z" (the median of an even count: the mean of the middle
 // two), the line `tessera raster --repeat` and the peer print for the benchmark scripts.

@@ -1,7 +1,7 @@
 #include "examples/distribute.h"
 
 #include "examples/command.h"
-#include "raster/error.h"
+#include "raster/core/error.h"
 
 namespace tessera::cli {
 

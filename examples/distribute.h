@@ -19,7 +19,7 @@
 #include <utility>
 #include <vector>
 
-#include "raster/output/frame.h"
+#include "raster/output/frame_encoding.h"
 #include "raster/render/frame_renderer.h"
 
 namespace tessera::cli {
@@ -51,10 +51,10 @@ public:
     // stores band b (bands arrive in order from 0). Locally every band is rendered and
     // written, and failures are thrown. Tiles mode: see above; failures are exchanged
     // instead, and the result is as gather()'s.
-    using RenderBands = std::function<void(const FrameRenderer::BandFilter&, const FrameRenderer::BandSink&)>;
-    using EncodeBand = std::function<OwnedImage(const Frame&)>;
-    using WriteBand = std::function<void(int band, OwnedImage encoded)>;
-    virtual bool stream_bands(int frame_number, const BandLayout& layout, const RenderBands& render,
+    using RenderBands = std::function<void(const render::FrameRenderer::BandFilter&, const render::FrameRenderer::BandSink&)>;
+    using EncodeBand = std::function<output::OwnedImage(const Frame&)>;
+    using WriteBand = std::function<void(int band, output::OwnedImage encoded)>;
+    virtual bool stream_bands(int frame_number, const render::BandLayout& layout, const RenderBands& render,
                               const EncodeBand& encode, const WriteBand& write) {
         (void)frame_number;
         (void)layout;

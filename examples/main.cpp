@@ -11,7 +11,7 @@
 #include <new>
 
 #include "examples/command.h"
-#include "raster/error.h"
+#include "raster/core/error.h"
 
 namespace {
 

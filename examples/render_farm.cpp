@@ -3,7 +3,7 @@
 #include <cmath>
 
 #include "examples/command.h"
-#include "raster/image_io.h"
+#include "raster/io/image_io.h"
 
 namespace tessera::cli {
 
@@ -26,9 +26,9 @@ void add_farm_options(CLI::App& cmd, FarmOptions& o) {
         ->check(CLI::IsMember({"frames", "tiles"}));
 }
 
-FarmRun::FarmRun(const FarmOptions& o, bool resume, AnimatedScene& scene, const std::string& scene_name,
-                 const fs::path& first_frame)
-    : claims_(o.claim), scene_(scene), simulation_(scene) {
+FarmRun::FarmRun(const FarmOptions& o, bool resume, render::AnimatedScene& scene, std::span<const scene_file::TextureSpec> textures,
+                 const std::string& scene_name, const fs::path& first_frame)
+    : claims_(o.claim), scene_(scene), simulation_(textures) {
     if (!(o.claim_timeout >= 0.0) || !std::isfinite(o.claim_timeout))
         throw UsageError("--claim-timeout must be a non-negative number of seconds");
     if (o.checkpoint_every < 0) throw UsageError("--checkpoint-every must be 0 or more");
@@ -53,7 +53,7 @@ bool FarmRun::claim(const fs::path& frame, int width, int height) {
         ++held_elsewhere_;
         return false;
     }
-    if (image_is_complete(frame, width, height)) {
+    if (io::image_is_complete(frame, width, height)) {
         farm::release_claim(frame);
         return false;
     }

@@ -11,13 +11,14 @@
 
 #include <filesystem>
 #include <memory>
+#include <span>
 #include <set>
 #include <string>
 #include <vector>
 
-#include "raster/farm/checkpoint_store.h"
-#include "raster/farm/frame_claim.h"
-#include "raster/farm/scene_simulation.h"
+#include "examples/farm/checkpoint_store.h"
+#include "examples/farm/frame_claim.h"
+#include "examples/farm/scene_simulation.h"
 
 namespace tessera::cli {
 
@@ -34,9 +35,11 @@ void add_farm_options(CLI::App& command, FarmOptions& options);
 // One process's share of the farm protocol around each frame it renders.
 class FarmRun {
 public:
-    // Throws UsageError for bad values. `first_frame` places the default checkpoint folder.
-    FarmRun(const FarmOptions& options, bool resume, AnimatedScene& scene, const std::string& scene_name,
-            const std::filesystem::path& first_frame);
+    // Throws UsageError for bad values. `textures`: the specs `scene`'s textures were built
+    // from, in order (the growing ones are simulated). `first_frame` places the default
+    // checkpoint folder.
+    FarmRun(const FarmOptions& options, bool resume, render::AnimatedScene& scene, std::span<const scene_file::TextureSpec> textures,
+            const std::string& scene_name, const std::filesystem::path& first_frame);
     ~FarmRun();  // hands back claims of frames never written (so others need not wait)
 
     // Whether this process renders `frame` now: true without --claim; with it, true only if
@@ -56,7 +59,7 @@ public:
 private:
     bool claims_;
     farm::ClaimPolicy policy_;
-    AnimatedScene& scene_;
+    render::AnimatedScene& scene_;
     farm::SceneSimulation simulation_;
     std::unique_ptr<farm::CheckpointStore> store_;
     std::set<std::filesystem::path> held_;

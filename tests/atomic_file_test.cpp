@@ -7,7 +7,7 @@
 #include <filesystem>
 #include <fstream>
 
-#include "raster/atomic_file.h"
+#include "raster/core/atomic_file.h"
 
 namespace tessera {
 namespace {

@@ -7,14 +7,14 @@
 #include <algorithm>
 #include <cmath>
 
-#include "raster/embree/pixel_rays.h"
+#include "raster/core/pixel_rays.h"
 #include "raster/embree/ray_cast.h"
 #include "raster/embree/scene.h"
-#include "raster/rasterizer.h"
-#include "raster/sphere_grid.h"
-#include "raster/test_meshes.h"
+#include "raster/pipeline/rasterizer.h"
+#include "raster/workloads/sphere_grid.h"
+#include "raster/workloads/test_meshes.h"
 
-namespace tessera::rt {
+namespace tessera::embree {
 namespace {
 
 // Distance in pixels from the centre of pixel (x, y) to the nearest edge of `triangle`
@@ -66,8 +66,8 @@ ExactDepth exact_depth(const Mesh& mesh, uint32_t triangle, const PixelRays& ray
 // within the snapping error.
 Comparison compare(const Mesh& mesh, const glm::mat4& vp, int w, int h, bool allow_depth_ties) {
     VisibilityBuffer raster, rays;
-    Rasterizer rasterizer;
-    rasterizer.render(mesh, vp, Viewport(w, h), RasterOptions{}, raster);
+    pipeline::Rasterizer rasterizer;
+    rasterizer.render(mesh, vp, pipeline::Viewport(w, h), pipeline::RasterOptions{}, raster);
     const RayScene scene(default_ray_device(), mesh);
     cast_primary_rays(scene, vp, w, h, rays);
     const PixelRays pixel_rays(vp, w, h);
@@ -110,7 +110,7 @@ Comparison compare(const Mesh& mesh, const glm::mat4& vp, int w, int h, bool all
 }
 
 TEST(EmbreeVersusRaster, SphereGridAgreesExceptExactEdges) {
-    const SphereGridScene grid = make_sphere_grid(30000, 4.0f / 3.0f);
+    const workloads::SphereGridScene grid = workloads::make_sphere_grid(30000, 4.0f / 3.0f);
     const Comparison c = compare(grid.mesh, grid.camera.view_projection(), 400, 300, false);
     EXPECT_GT(c.covered, 40000u);
     EXPECT_EQ(c.unexplained, 0u);
@@ -124,7 +124,7 @@ TEST(EmbreeVersusRaster, RandomTrianglesThroughAPerspectiveCameraAgree) {
     camera.aspect = 1.5f;
     const glm::mat4 vp = camera.view_projection();
     // Window-space triangles with random depths, mapped back to world space.
-    const Mesh mesh = test_meshes::to_world(test_meshes::random_triangles(7, 400, 300, 200, 40.0f),
+    const Mesh mesh = workloads::to_world(workloads::random_triangles(7, 400, 300, 200, 40.0f),
                                             vp, 300, 200);
     Mesh padded = mesh;
     reserve_ray_padding(padded);
@@ -150,4 +150,4 @@ TEST(EmbreeVersusRaster, BackgroundAndNearPlaneMatch) {
 }
 
 }  // namespace
-}  // namespace tessera::rt
+}  // namespace tessera::embree

@@ -9,13 +9,13 @@
 #include <optional>
 
 #include "raster/embree/device.h"
-#include "raster/embree/pixel_rays.h"
+#include "raster/core/pixel_rays.h"
 #include "raster/embree/ray_cast.h"
 #include "raster/embree/scene.h"
-#include "raster/error.h"
-#include "raster/sphere_grid.h"
+#include "raster/core/error.h"
+#include "raster/workloads/sphere_grid.h"
 
-namespace tessera::rt {
+namespace tessera::embree {
 namespace {
 
 Mesh quad_mesh(float half) {
@@ -99,7 +99,7 @@ ReferenceHit reference_hit(const Mesh& mesh, const glm::vec3& o, const glm::vec3
 }
 
 TEST(EmbreeRayCast, SphereGridMatchesBruteForceReferenceExceptAtEdges) {
-    const SphereGridScene grid = make_sphere_grid(2000, 4.0f / 3.0f);
+    const workloads::SphereGridScene grid = workloads::make_sphere_grid(2000, 4.0f / 3.0f);
     const RayScene scene(default_ray_device(), grid.mesh);
     const glm::mat4 vp = grid.camera.view_projection();
     const int w = 96, h = 72;
@@ -129,7 +129,7 @@ TEST(EmbreeRayCast, SphereGridMatchesBruteForceReferenceExceptAtEdges) {
 }
 
 TEST(EmbreeRayCast, PacketWidthsAndThreadCountsGiveIdenticalBuffers) {
-    const SphereGridScene grid = make_sphere_grid(20000);
+    const workloads::SphereGridScene grid = workloads::make_sphere_grid(20000);
     const RayScene scene(default_ray_device(), grid.mesh);
     const glm::mat4 vp = grid.camera.view_projection();
     VisibilityBuffer single, x8, x16, one_thread;
@@ -169,13 +169,13 @@ TEST(EmbreeRayCast, BrokenTrianglesAreCountedAndTheFrameStillRenders) {
 }
 
 TEST(EmbreeRayCast, RefitAndRebuildFollowTheAnimatedMesh) {
-    SphereGridScene grid = make_sphere_grid(5000);
+    workloads::SphereGridScene grid = workloads::make_sphere_grid(5000);
     RayScene refit(default_ray_device(), grid.mesh, BvhUpdate::refit);
     RayScene rebuild(default_ray_device(), grid.mesh, BvhUpdate::rebuild);
     VisibilityBuffer before;
     const glm::mat4 vp = grid.camera.view_projection();
     cast_primary_rays(refit, vp, 160, 90, before);
-    ripple_spheres(grid, 1.0f);
+    workloads::ripple_spheres(grid, 1.0f);
     refit.update();
     rebuild.update();
     const RayScene fresh(default_ray_device(), grid.mesh);
@@ -232,4 +232,4 @@ TEST(EmbreeScene, UnpaddedPositionsAreCopiedNotShared) {
 }
 
 }  // namespace
-}  // namespace tessera::rt
+}  // namespace tessera::embree

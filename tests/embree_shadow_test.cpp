@@ -8,19 +8,19 @@
 #include "raster/embree/ray_cast.h"
 #include "raster/embree/scene.h"
 #include "raster/embree/shadow_rays.h"
-#include "raster/image_io.h"
+#include "raster/io/image_io.h"
 #include "raster/shadow/mask_compare.h"
 #include "raster/shadow/light_mask.h"
-#include "raster/sphere_grid.h"
+#include "raster/workloads/sphere_grid.h"
 
-namespace tessera::rt {
+namespace tessera::embree {
 namespace {
 
 // A ground square (y = 0, 10 x 10) under a 1 x 1 occluder at y = 1 centred over the origin.
 Mesh ground_and_occluder() {
     Mesh mesh;
-    append_ground(mesh, 0.0f, 0.0f, 0.0f, 10.0f, 4);
-    append_ground(mesh, 0.0f, 0.0f, 1.0f, 1.0f, 1);
+    workloads::append_ground(mesh, 0.0f, 0.0f, 0.0f, 10.0f, 4);
+    workloads::append_ground(mesh, 0.0f, 0.0f, 1.0f, 1.0f, 1);
     reserve_ray_padding(mesh);
     return mesh;
 }
@@ -62,7 +62,7 @@ INSTANTIATE_TEST_SUITE_P(Embree, ShadowRayWidths,
 
 TEST(EmbreeShadowMask, FlatPlaneHasNoSelfShadowingAtAnyAngle) {
     Mesh mesh;
-    append_ground(mesh, 0.0f, 0.0f, 0.0f, 40.0f, 64);
+    workloads::append_ground(mesh, 0.0f, 0.0f, 0.0f, 40.0f, 64);
     reserve_ray_padding(mesh);
     const RayScene scene(default_ray_device(), mesh);
     Camera camera;
@@ -117,7 +117,7 @@ TEST(EmbreeShadowMask, OccluderShadowLandsUnderItInTheImage) {
 }
 
 TEST(EmbreeShadowMask, PacketsAgreeWithSingleRaysOnTheSphereGrid) {
-    const SphereGridScene grid = make_sphere_grid(20000);
+    const workloads::SphereGridScene grid = workloads::make_sphere_grid(20000);
     const RayScene scene(default_ray_device(), grid.mesh);
     const glm::mat4 vp = grid.camera.view_projection();
     VisibilityBuffer vis;
@@ -171,7 +171,7 @@ TEST(ShadowMaskCompare, CountsDisagreementsAndExclusions) {
 
     const auto path = std::filesystem::path(::testing::TempDir()) / "embree_mask_diff.png";
     shadow::write_mask_diff(path, a, b, vis, &exclude);
-    const FloatImage image = read_image(path);
+    const io::FloatImage image = io::read_image(path);
     ASSERT_EQ(image.width, 4);
     EXPECT_EQ(image.at(0, 0, 0), image.at(0, 0, 2));  // agree, lit: grey
     EXPECT_GT(image.at(0, 0, 0), 0.8f);
@@ -195,4 +195,4 @@ TEST(ShadowMaskCompare, GrazingLightsMarksOnlyNearTangentLights) {
 }
 
 }  // namespace
-}  // namespace tessera::rt
+}  // namespace tessera::embree

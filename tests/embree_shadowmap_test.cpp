@@ -8,13 +8,13 @@
 #include <vector>
 
 #include "procedural/hash.h"
-#include "raster/embree/pixel_rays.h"
+#include "raster/core/pixel_rays.h"
 #include "raster/embree/scene.h"
 #include "raster/embree/shadow_rays.h"
-#include "raster/rasterizer.h"
+#include "raster/pipeline/rasterizer.h"
 #include "raster/shadow/mask_compare.h"
 #include "raster/shadow/shadow_map.h"
-#include "raster/sphere_grid.h"
+#include "raster/workloads/sphere_grid.h"
 
 namespace tessera::shadow {
 namespace {
@@ -23,15 +23,15 @@ const glm::vec3 kUp{0.0f, 1.0f, 0.0f};
 
 Mesh ground_and_occluder() {
     Mesh mesh;
-    append_ground(mesh, 0.0f, 0.0f, 0.0f, 10.0f, 4);
-    append_ground(mesh, 0.0f, 0.0f, 1.0f, 1.0f, 1);
-    rt::reserve_ray_padding(mesh);
+    workloads::append_ground(mesh, 0.0f, 0.0f, 0.0f, 10.0f, 4);
+    workloads::append_ground(mesh, 0.0f, 0.0f, 1.0f, 1.0f, 1);
+    embree::reserve_ray_padding(mesh);
     return mesh;
 }
 
 TEST(ShadowMap, PointUnderOccluderIsShadowedAndBesideItLit) {
     const Mesh mesh = ground_and_occluder();
-    Rasterizer rasterizer;
+    pipeline::Rasterizer rasterizer;
     for (int pcf : {0, 1, 2}) {
         ShadowMapOptions options;
         options.resolution = 512;
@@ -47,15 +47,15 @@ TEST(ShadowMap, PointUnderOccluderIsShadowedAndBesideItLit) {
 // Every covered pixel of a lone plane must be lit, for steep and low lights alike.
 TEST(ShadowMap, FlatPlaneHasNoAcneWithTheDefaultBias) {
     Mesh mesh;
-    append_ground(mesh, 0.0f, 0.0f, 0.0f, 40.0f, 16);
-    rt::reserve_ray_padding(mesh);
+    workloads::append_ground(mesh, 0.0f, 0.0f, 0.0f, 40.0f, 16);
+    embree::reserve_ray_padding(mesh);
     Camera camera;
     camera.eye = {0.0f, 6.0f, 14.0f};
     camera.lookat = {0.0f, 0.0f, 0.0f};
     const glm::mat4 vp = camera.view_projection();
-    Rasterizer rasterizer;
+    pipeline::Rasterizer rasterizer;
     VisibilityBuffer vis;
-    rasterizer.render(mesh, vp, Viewport(320, 180), RasterOptions{}, vis);
+    rasterizer.render(mesh, vp, pipeline::Viewport(320, 180), pipeline::RasterOptions{}, vis);
     // Elevations of about 70, 30 and 10 degrees above the plane's centre, from three sides.
     const std::vector<glm::vec3> lights = {{5.0f, 30.0f, 5.0f}, {-35.0f, 20.0f, 0.0f},
                                            {0.0f, 10.0f, -57.0f}};
@@ -79,13 +79,13 @@ TEST(ShadowMap, FlatPlaneHasNoAcneWithTheDefaultBias) {
 TEST(ShadowMap, WithoutBiasThePlaneHasAcne) {
     // The previous test can fail: with no bias a low light self-shadows the plane.
     Mesh mesh;
-    append_ground(mesh, 0.0f, 0.0f, 0.0f, 40.0f, 16);
+    workloads::append_ground(mesh, 0.0f, 0.0f, 0.0f, 40.0f, 16);
     Camera camera;
     camera.eye = {0.0f, 6.0f, 14.0f};
     const glm::mat4 vp = camera.view_projection();
-    Rasterizer rasterizer;
+    pipeline::Rasterizer rasterizer;
     VisibilityBuffer vis;
-    rasterizer.render(mesh, vp, Viewport(320, 180), RasterOptions{}, vis);
+    rasterizer.render(mesh, vp, pipeline::Viewport(320, 180), pipeline::RasterOptions{}, vis);
     const std::vector<glm::vec3> lights = {{0.0f, 10.0f, -57.0f}};
     ShadowMapOptions options;
     options.resolution = 256;
@@ -100,17 +100,17 @@ TEST(ShadowMap, WithoutBiasThePlaneHasAcne) {
 }
 
 TEST(ShadowMap, AgreesWithEmbreeShadowRaysOnTheSphereGrid) {
-    const SphereGridScene grid = make_sphere_grid(20000);
+    const workloads::SphereGridScene grid = workloads::make_sphere_grid(20000);
     const glm::mat4 vp = grid.camera.view_projection();
-    Rasterizer rasterizer;
+    pipeline::Rasterizer rasterizer;
     VisibilityBuffer vis;
-    rasterizer.render(grid.mesh, vp, Viewport(640, 360), RasterOptions{}, vis);
+    rasterizer.render(grid.mesh, vp, pipeline::Viewport(640, 360), pipeline::RasterOptions{}, vis);
     const std::vector<glm::vec3> lights = {grid.light};
     const std::vector<ShadowMap> maps = {ShadowMap(rasterizer, grid.mesh, grid.light)};
     const LightMask by_map = compute_light_mask(vis, grid.mesh, vp, lights, shadow_map_test(maps));
-    const rt::RayScene scene(rt::default_ray_device(), grid.mesh);
+    const embree::RayScene scene(embree::default_ray_device(), grid.mesh);
     const LightMask by_rays =
-        compute_light_mask(vis, grid.mesh, vp, lights, rt::shadow_ray_test(scene));
+        compute_light_mask(vis, grid.mesh, vp, lights, embree::shadow_ray_test(scene));
     const LightMask grazing = compute_light_mask(vis, grid.mesh, vp, lights, grazing_lights(0.1f));
     const MaskAgreement agreement = compare_light_masks(by_map, by_rays, vis, &grazing);
     EXPECT_GT(agreement.compared, 100000u);
@@ -122,13 +122,13 @@ TEST(ShadowMap, AgreesWithEmbreeShadowRaysOnTheSphereGrid) {
 }
 
 TEST(ShadowMap, MaskIsTheSameForAnyThreadCount) {
-    const SphereGridScene grid = make_sphere_grid(5000);
+    const workloads::SphereGridScene grid = workloads::make_sphere_grid(5000);
     const glm::mat4 vp = grid.camera.view_projection();
     const std::vector<glm::vec3> lights = {grid.light, {-4.0f, 6.0f, 2.0f}};
     const auto render = [&] {
-        Rasterizer rasterizer;
+        pipeline::Rasterizer rasterizer;
         VisibilityBuffer vis;
-        rasterizer.render(grid.mesh, vp, Viewport(333, 187), RasterOptions{}, vis);
+        rasterizer.render(grid.mesh, vp, pipeline::Viewport(333, 187), pipeline::RasterOptions{}, vis);
         ShadowMapOptions options;
         options.resolution = 700;
         std::vector<ShadowMap> maps;
@@ -147,14 +147,14 @@ TEST(ShadowMap, BrokenTrianglesAreSkippedAndTheFrameStillRenders) {
     mesh.positions.push_back({std::numeric_limits<float>::infinity(), 3.0f, 0.0f});
     const auto last = uint32_t(mesh.positions.size());
     mesh.indices.insert(mesh.indices.end(), {0, last - 2, 1, 0, last - 1, 1, 0, 1, 999});
-    rt::reserve_ray_padding(mesh);
-    Rasterizer rasterizer;
+    embree::reserve_ray_padding(mesh);
+    pipeline::Rasterizer rasterizer;
     ShadowMapOptions options;
     options.resolution = 256;
     const ShadowMap map(rasterizer, mesh, {0.0f, 5.0f, 0.0f}, options);
     EXPECT_FALSE(map.lit({0.0f, 0.0f, 0.0f}, kUp));
     EXPECT_TRUE(map.lit({2.0f, 0.0f, 0.0f}, kUp));
-    const rt::RayScene scene(rt::default_ray_device(), mesh);
+    const embree::RayScene scene(embree::default_ray_device(), mesh);
     EXPECT_EQ(scene.defects().total(), 3u);
 }
 
@@ -162,14 +162,14 @@ TEST(ShadowMap, BrokenTrianglesAreSkippedAndTheFrameStillRenders) {
 // surface point of a sphere-grid frame, and on random points and normals around the scene
 // (outside the map, behind the light, on its edges), for several PCF radii and map sizes.
 TEST(ShadowMap, SimdLookupEqualsScalarReference) {
-    const SphereGridScene grid = make_sphere_grid(20000);
+    const workloads::SphereGridScene grid = workloads::make_sphere_grid(20000);
     const glm::mat4 vp = grid.camera.view_projection();
-    Rasterizer rasterizer;
+    pipeline::Rasterizer rasterizer;
     VisibilityBuffer vis;
     const int w = 320, h = 180;
-    rasterizer.render(grid.mesh, vp, Viewport(w, h), RasterOptions{}, vis);
+    rasterizer.render(grid.mesh, vp, pipeline::Viewport(w, h), pipeline::RasterOptions{}, vis);
     SurfacePoints points;
-    gather_surface_points(vis, grid.mesh, rt::PixelRays(vp, w, h), rt::ImageTile{0, 0, w, h}, points);
+    gather_surface_points(vis, grid.mesh, PixelRays(vp, w, h), ImageTile{0, 0, w, h}, points);
     const size_t from_frame = points.size();
     ASSERT_GT(from_frame, 20000u);
     procedural::SplitMix64 random(6);
@@ -206,7 +206,7 @@ TEST(ShadowMap, SimdLookupEqualsScalarReference) {
 
 TEST(ShadowMap, BadOptionsAreRejected) {
     const Mesh mesh = ground_and_occluder();
-    Rasterizer rasterizer;
+    pipeline::Rasterizer rasterizer;
     for (auto change : {+[](ShadowMapOptions& o) { o.resolution = 8; },
                         +[](ShadowMapOptions& o) { o.resolution = 100000; },
                         +[](ShadowMapOptions& o) { o.pcf_radius = -1; },

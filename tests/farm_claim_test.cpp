@@ -7,7 +7,7 @@
 #include <fstream>
 #include <string>
 
-#include "raster/farm/frame_claim.h"
+#include "examples/farm/frame_claim.h"
 
 namespace tessera::farm {
 namespace {

@@ -7,9 +7,9 @@
 #include <filesystem>
 #include <string>
 
-#include "raster/error.h"
-#include "raster/farm/checkpoint_store.h"
-#include "raster/farm/scene_simulation.h"
+#include "raster/core/error.h"
+#include "examples/farm/checkpoint_store.h"
+#include "examples/farm/scene_simulation.h"
 #include "raster/scene_file/scene_parse.h"
 
 namespace tessera::farm {
@@ -17,36 +17,36 @@ namespace {
 
 namespace fs = std::filesystem;
 
-AnimatedScene growing_scene(int grow_per_frame, int seed = 5) {
+scene_file::SceneSpec growing_skin_scene(int grow_per_frame, int seed = 5) {
     const std::string json = R"({"textures": {"skin": {"type": "reaction_diffusion", "preset": "spots", "size": 32,
         "steps": 50, "seed": )" + std::to_string(seed) + R"(, "grow_per_frame": )" + std::to_string(grow_per_frame) +
                              R"(}}, "materials": {"m": {"diffuse_texture": "skin"}},
         "objects": [{"type": "sphere", "material": "m"}]})";
     std::vector<std::string> warnings;
-    return build_scene(parse_scene(json, "test", warnings));
+    return scene_file::parse_scene(json, "test", warnings);
 }
 
 TEST(SceneSimulation, StaticSkinsAreNotSimulated) {
-    EXPECT_TRUE(SceneSimulation(growing_scene(0)).empty());
+    EXPECT_TRUE(SceneSimulation(growing_skin_scene(0).textures).empty());
 }
 
 TEST(SceneSimulation, StateOfAFrameIsPathIndependent) {
-    const AnimatedScene scene = growing_scene(7);
-    SceneSimulation direct(scene), stepwise(scene), backwards(scene);
+    const std::vector<scene_file::TextureSpec> skins = growing_skin_scene(7).textures;
+    SceneSimulation direct(skins), stepwise(skins), backwards(skins);
     direct.advance_to(9);
     for (int f = 0; f <= 9; ++f) stepwise.advance_to(f);
     backwards.advance_to(12);
     backwards.advance_to(9);  // starts over from step 0
     EXPECT_EQ(direct.checkpoint(), stepwise.checkpoint());
     EXPECT_EQ(direct.checkpoint(), backwards.checkpoint());
-    SceneSimulation other(scene);
+    SceneSimulation other(skins);
     other.advance_to(8);
     EXPECT_NE(direct.checkpoint(), other.checkpoint());  // the skin grows
 }
 
 TEST(SceneSimulation, RestoreThenAdvanceMatchesDirect) {
-    const AnimatedScene scene = growing_scene(7);
-    SceneSimulation a(scene), b(scene), direct(scene);
+    const std::vector<scene_file::TextureSpec> skins = growing_skin_scene(7).textures;
+    SceneSimulation a(skins), b(skins), direct(skins);
     a.advance_to(4);
     b.restore(a.checkpoint(), "memory");
     EXPECT_EQ(b.frame(), 4);
@@ -57,8 +57,8 @@ TEST(SceneSimulation, RestoreThenAdvanceMatchesDirect) {
 }
 
 TEST(SceneSimulation, RefusesDamagedTruncatedAndForeignCheckpoints) {
-    const AnimatedScene scene = growing_scene(7);
-    SceneSimulation a(scene), b(scene);
+    const std::vector<scene_file::TextureSpec> skins = growing_skin_scene(7).textures;
+    SceneSimulation a(skins), b(skins);
     a.advance_to(3);
     b.advance_to(1);
     std::vector<std::byte> bytes = a.checkpoint();
@@ -68,7 +68,7 @@ TEST(SceneSimulation, RefusesDamagedTruncatedAndForeignCheckpoints) {
     bytes = a.checkpoint();
     bytes.resize(bytes.size() - 9);
     EXPECT_THROW(b.restore(bytes, "x"), Error);
-    SceneSimulation foreign(growing_scene(7, 6));
+    SceneSimulation foreign(growing_skin_scene(7, 6).textures);
     EXPECT_NE(foreign.fingerprint(), a.fingerprint());
     EXPECT_THROW(foreign.restore(a.checkpoint(), "x"), Error);
 }
@@ -76,8 +76,8 @@ TEST(SceneSimulation, RefusesDamagedTruncatedAndForeignCheckpoints) {
 TEST(CheckpointStore, SavesDueFramesAndRestoresTheLatest) {
     const fs::path dir = fs::temp_directory_path() / ("tessera_ckpt_" + std::to_string(getpid()));
     fs::remove_all(dir);
-    const AnimatedScene scene = growing_scene(5);
-    SceneSimulation writer(scene);
+    const std::vector<scene_file::TextureSpec> skins = growing_skin_scene(5).textures;
+    SceneSimulation writer(skins);
     const CheckpointStore store(dir, "grow", writer.fingerprint(), 3);
     EXPECT_EQ(advance(writer, &store, 7), 8);  // frames 0..7 from scratch
     for (int f : {0, 3, 6}) EXPECT_TRUE(fs::exists(store.path_for(f))) << f;
@@ -85,7 +85,7 @@ TEST(CheckpointStore, SavesDueFramesAndRestoresTheLatest) {
     EXPECT_EQ(store.latest(-1, 7), 6);
     EXPECT_EQ(store.latest(6, 7), std::nullopt);
 
-    SceneSimulation reader(scene), direct(scene);
+    SceneSimulation reader(skins), direct(skins);
     EXPECT_EQ(advance(reader, &store, 8), 2);  // restores 6, simulates 7 and 8
     direct.advance_to(8);
     EXPECT_EQ(reader.checkpoint(), direct.checkpoint());

@@ -1,4 +1,4 @@
-#include "raster/output/frame_sequence.h"
+#include "examples/frame_sequence.h"
 
 #include <gtest/gtest.h>
 

@@ -7,8 +7,8 @@
 #include <filesystem>
 #include <string>
 
-#include "raster/error.h"
-#include "raster/image_io.h"
+#include "raster/core/error.h"
+#include "raster/io/image_io.h"
 #include "raster/output/frame_stream.h"
 
 namespace fs = std::filesystem;
@@ -45,11 +45,11 @@ Frame rows_of(const Frame& f, int y0, int y1) {
 TEST(FrameStream, BandsGiveTheWholeFramesFile) {
     const fs::path dir = scratch_dir();
     const Frame frame = pattern(96, 200);
-    FrameStream stream(dir / "f.png", frame.width, frame.height);
+    output::FrameStream stream(dir / "f.png", frame.width, frame.height);
     for (int y = 0; y < frame.height; y += 64) stream.write(y, rows_of(frame, y, std::min(frame.height, y + 64)));
     stream.commit();
-    write_frame(dir / "whole.png", frame);
-    EXPECT_EQ(read_image(dir / "f.png").pixels, read_image(dir / "whole.png").pixels);
+    output::write_frame(dir / "whole.png", frame);
+    EXPECT_EQ(io::read_image(dir / "f.png").pixels, io::read_image(dir / "whole.png").pixels);
     fs::remove_all(dir);
 }
 
@@ -60,7 +60,7 @@ TEST(FrameStream, AFailedBandIsReportedByALaterCall) {
     const Frame frame = pattern(512, 256);
     bool reported = false;
     try {
-        FrameStream stream(dir / "full.png", frame.width, frame.height);
+        output::FrameStream stream(dir / "full.png", frame.width, frame.height);
         for (int y = 0; y < frame.height; y += 64) stream.write(y, rows_of(frame, y, y + 64));
         stream.commit();
     } catch (const Error& e) {
@@ -74,7 +74,7 @@ TEST(FrameStream, AnAbandonedStreamLeavesNothing) {
     const fs::path dir = scratch_dir();
     const Frame frame = pattern(64, 256);
     {
-        FrameStream stream(dir / "half.png", frame.width, frame.height);
+        output::FrameStream stream(dir / "half.png", frame.width, frame.height);
         stream.write(0, rows_of(frame, 0, 128));
     }
     EXPECT_TRUE(fs::is_empty(dir));

@@ -1,4 +1,4 @@
-#include "raster/image_io.h"
+#include "raster/io/image_io.h"
 
 #include <gtest/gtest.h>
 
@@ -6,7 +6,7 @@
 #include <filesystem>
 #include <vector>
 
-#include "raster/error.h"
+#include "raster/core/error.h"
 
 namespace fs = std::filesystem;
 using namespace tessera;
@@ -30,8 +30,8 @@ TEST(ImageIO, PngRoundTripIsExact) {
     std::vector<uint8_t> pixels(w * h * 3);
     for (size_t i = 0; i < pixels.size(); ++i) pixels[i] = uint8_t(i * 37);
     const fs::path path = scratch("round.png");
-    write_image(path, {w, h, 3, PixelType::u8, pixels.data()});
-    FloatImage back = read_image(path);
+    io::write_image(path, {w, h, 3, io::PixelType::u8, pixels.data()});
+    io::FloatImage back = io::read_image(path);
     ASSERT_EQ(back.width, w);
     ASSERT_EQ(back.height, h);
     ASSERT_EQ(back.channels, 3);
@@ -42,21 +42,21 @@ TEST(ImageIO, PngRoundTripIsExact) {
 TEST(ImageIO, ExrKeepsFloats) {
     std::vector<float> pixels = {0.0f, 0.25f, 1.5f, 1e4f};
     const fs::path path = scratch("round.exr");
-    write_image(path, {2, 2, 1, PixelType::f32, pixels.data()});
-    FloatImage back = read_image(path);
+    io::write_image(path, {2, 2, 1, io::PixelType::f32, pixels.data()});
+    io::FloatImage back = io::read_image(path);
     ASSERT_EQ(back.pixels.size(), pixels.size());
     for (size_t i = 0; i < pixels.size(); ++i) EXPECT_FLOAT_EQ(back.pixels[i], pixels[i]);
 }
 
 TEST(ImageIO, MissingDirectoryIsAnErrorAndLeavesNothing) {
     std::vector<uint8_t> pixel(3, 0);
-    EXPECT_THROW(write_image(scratch("no/such/dir/x.png"), {1, 1, 3, PixelType::u8, pixel.data()}),
+    EXPECT_THROW(io::write_image(scratch("no/such/dir/x.png"), {1, 1, 3, io::PixelType::u8, pixel.data()}),
                  Error);
 }
 
 TEST(ImageIO, UnknownExtensionIsAnError) {
     std::vector<uint8_t> pixel(3, 0);
-    EXPECT_THROW(write_image(scratch("x.notaformat"), {1, 1, 3, PixelType::u8, pixel.data()}),
+    EXPECT_THROW(io::write_image(scratch("x.notaformat"), {1, 1, 3, io::PixelType::u8, pixel.data()}),
                  Error);
 }
 
@@ -68,7 +68,7 @@ TEST(ImageIO, FullDeviceIsAnErrorNotACrash) {
     fs::remove(link);
     fs::create_symlink("/dev/full", link);
     std::vector<uint8_t> pixels(64 * 64 * 3, 128);
-    EXPECT_THROW(write_image(link, {64, 64, 3, PixelType::u8, pixels.data()}), Error);
+    EXPECT_THROW(io::write_image(link, {64, 64, 3, io::PixelType::u8, pixels.data()}), Error);
     EXPECT_TRUE(fs::is_character_file("/dev/full"));
 }
 
@@ -77,9 +77,9 @@ TEST(ImageIO, FailedWriteLeavesNoTemporary) {
     fs::remove_all(dir);
     fs::create_directories(dir);
     std::vector<uint8_t> pixels(4 * 4 * 3, 9);
-    write_image(dir / "ok.png", {4, 4, 3, PixelType::u8, pixels.data()});
+    io::write_image(dir / "ok.png", {4, 4, 3, io::PixelType::u8, pixels.data()});
     EXPECT_EQ(files_in(dir), 1u);  // the temporary was renamed, not left beside it
-    EXPECT_THROW(write_image(dir / "bad.png", {0, 4, 3, PixelType::u8, pixels.data()}), Error);
+    EXPECT_THROW(io::write_image(dir / "bad.png", {0, 4, 3, io::PixelType::u8, pixels.data()}), Error);
     EXPECT_EQ(files_in(dir), 1u);
 }
 
@@ -90,15 +90,15 @@ TEST(ImageIO, ReadingGarbageIsAnError) {
         std::fputs("this is not a png", f);
         std::fclose(f);
     }
-    EXPECT_THROW(read_image(path), Error);
-    EXPECT_THROW(read_image(scratch("does_not_exist.png")), Error);
+    EXPECT_THROW(io::read_image(path), Error);
+    EXPECT_THROW(io::read_image(scratch("does_not_exist.png")), Error);
 }
 
 TEST(ImageIO, Tiff16RoundTripIsExact) {
     std::vector<uint16_t> pixels = {0, 1, 32768, 65535, 1234, 4321};
     const fs::path path = scratch("round.tif");
-    write_image(path, {3, 2, 1, PixelType::u16, pixels.data()});
-    FloatImage back = read_image(path);
+    io::write_image(path, {3, 2, 1, io::PixelType::u16, pixels.data()});
+    io::FloatImage back = io::read_image(path);
     ASSERT_EQ(back.pixels.size(), pixels.size());
     for (size_t i = 0; i < pixels.size(); ++i)
         EXPECT_EQ(int(back.pixels[i] * 65535.0f + 0.5f), int(pixels[i]));

@@ -5,7 +5,7 @@
 
 #include <cmath>
 
-#include "raster/camera.h"
+#include "raster/core/camera.h"
 #include "raster/march/march_surface.h"
 #include "raster/march/sphere_field.h"
 #include "raster/march/surface_pass.h"
@@ -40,7 +40,7 @@ inline double unit_sphere_distance(glm::vec3 o, glm::vec3 d) {
 // The sphere as a marched surface in its bounding slab, with a tolerance tight enough for the
 // tests' depth comparisons. Keeps references to `rays` and `background`.
 inline march::SurfacePass<march::SlabSurface<march::SphereField>> sphere_pass(const march::RayGenerator& rays,
-                                                                              const Background& background) {
+                                                                              const scene::Background& background) {
     march::MarchSettings settings;
     settings.tolerance = 1e-5f;
     return {march::SlabSurface<march::SphereField>{kUnitSphere, march::Slab{-1.0f, 1.0f}}, rays, settings,

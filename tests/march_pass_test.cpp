@@ -31,9 +31,9 @@ struct Frame {
     PassTarget all() { return tile(0, 0, W, H); }
 };
 
-Background sky_background() {
-    Background b;
-    b.kind = Background::Kind::sky;
+scene::Background sky_background() {
+    scene::Background b;
+    b.kind = scene::Background::Kind::sky;
     return b;
 }
 
@@ -42,7 +42,7 @@ Background sky_background() {
 TEST(MarchPass, MarchedSphereLandsAtItsAnalyticDepth) {
     const Camera camera = march_camera(W, H);
     const RayGenerator rays(camera, W, H);
-    const Background env = sky_background();
+    const scene::Background env = sky_background();
     Frame frame;
     sphere_pass(rays, env).run(frame.all());
     int covered = 0;
@@ -70,7 +70,7 @@ TEST(MarchPass, MarchedSurfaceAndRasterizedPlaneOccludeEachOther) {
     // the sphere's cap (z up to 1) pokes through it, its flanks (z < 0.6) hide behind it.
     const Camera camera = march_camera(W, H);
     const RayGenerator rays(camera, W, H);
-    const Background env = sky_background();
+    const scene::Background env = sky_background();
     Frame frame;
     const glm::vec4 green(0.0f, 1.0f, 0.0f, 1.0f);
     for (int y = 0; y < H; ++y)
@@ -98,7 +98,7 @@ TEST(MarchPass, MarchedSurfaceAndRasterizedPlaneOccludeEachOther) {
 
 TEST(MarchPass, TilesGiveTheSameBytesAsOneRectangle) {
     const RayGenerator rays(march_camera(W, H), W, H);
-    const Background env = sky_background();
+    const scene::Background env = sky_background();
     Fog fog;
     fog.density = {0.05f, 0.07f, 0.09f};
     fog.colour = {0.6f, 0.6f, 0.7f};
@@ -125,7 +125,7 @@ TEST(MarchPass, TilesGiveTheSameBytesAsOneRectangle) {
 TEST(MarchPass, BackgroundFillsEmptyPixelsAndFogUsesTheDepthDistance) {
     const Camera camera = march_camera(W, H);
     const RayGenerator rays(camera, W, H);
-    const Background env = sky_background();
+    const scene::Background env = sky_background();
     Frame frame;
     sphere_pass(rays, env).run(frame.all());
     const Frame shaded = frame;
@@ -139,7 +139,7 @@ TEST(MarchPass, BackgroundFillsEmptyPixelsAndFogUsesTheDepthDistance) {
         for (int x = 0; x < W; ++x) {
             const glm::vec3 d = rays.direction(x, y);
             const float depth = frame.depth[y * W + x];
-            const glm::vec3 before = depth < 1.0f ? glm::vec3(shaded.colour[y * W + x]) : background_radiance(env, d);
+            const glm::vec3 before = depth < 1.0f ? glm::vec3(shaded.colour[y * W + x]) : shade::background_radiance(env, d);
             const float distance = depth < 1.0f ? float(unit_sphere_distance(camera.eye, d)) : INFINITY;
             if (depth < 1.0f && std::isinf(distance)) continue;
             const glm::vec3 expected = fog.apply(before, camera.eye, d, distance);
@@ -153,7 +153,7 @@ TEST(MarchPass, ASurfaceCutByTheNearPlaneShowsAtTheNearPlane) {
     Camera camera = march_camera(W, H);
     camera.eye = {0.0f, 0.0f, 1.2f};  // the near plane (0.5 ahead) lies inside the sphere
     const RayGenerator rays(camera, W, H);
-    const Background env = sky_background();
+    const scene::Background env = sky_background();
     Frame frame;
     sphere_pass(rays, env).run(frame.all());
     const size_t centre = size_t(H / 2) * W + W / 2;
@@ -163,7 +163,7 @@ TEST(MarchPass, ASurfaceCutByTheNearPlaneShowsAtTheNearPlane) {
 
 TEST(MarchPass, BadPassParametersAreRefused) {
     const RayGenerator rays(march_camera(W, H), W, H);
-    const Background env = sky_background();
+    const scene::Background env = sky_background();
     MarchSettings zero_steps;
     zero_steps.steps = 0;
     using Pass = SurfacePass<SlabSurface<SphereField>>;

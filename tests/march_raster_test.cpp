@@ -12,7 +12,7 @@
 
 #include "raster/march/fog_pass.h"
 #include "raster/march/tile_passes.h"
-#include "raster/rasterizer.h"
+#include "raster/pipeline/rasterizer.h"
 #include "march_fixtures.h"
 
 using namespace tessera;
@@ -34,7 +34,7 @@ Mesh quad() {
 }
 
 // Paints covered pixels green: stands in for the opaque shading pass.
-void paint(const TileContext& tile) {
+void paint(const pipeline::TileContext& tile) {
     for (int y = 0; y < tile.height(); ++y)
         for (int x = 0; x < tile.width(); ++x)
             if (tile.triangle[y * tile.stride + x] != kNoTriangle) tile.color[y * tile.color_stride + x] = kGreen;
@@ -45,26 +45,26 @@ struct Result {
     std::vector<glm::vec4> colour;
 };
 
-Result render(int tile_size, const Fog* fog) {
+Result render_scene(int tile_size, const Fog* fog) {
     const Camera cam = march_camera(W, H);
     const RayGenerator rays(cam, W, H);
-    const Background background{};
+    const scene::Background background{};
     const auto sphere = sphere_pass(rays, background);
-    std::vector<TilePass> passes{paint, tile_pass(sphere)};
+    std::vector<pipeline::TilePass> passes{paint, tile_pass(sphere)};
     std::optional<FogPass> fog_pass;
     if (fog) passes.push_back(tile_pass(fog_pass.emplace(rays, *fog)));
-    RasterOptions options;
+    pipeline::RasterOptions options;
     options.tile_size = tile_size;
     Result r;
-    Rasterizer rasterizer;
-    rasterizer.render(quad(), cam.view_projection(), Viewport(W, H), options, r.vis, passes, &r.colour);
+    pipeline::Rasterizer rasterizer;
+    rasterizer.render(quad(), cam.view_projection(), pipeline::Viewport(W, H), options, r.vis, passes, &r.colour);
     return r;
 }
 
 }  // namespace
 
 TEST(MarchRaster, MarchedSphereAndRasterizedQuadOccludeEachOther) {
-    const Result r = render(64, nullptr);
+    const Result r = render_scene(64, nullptr);
     const Camera cam = march_camera(W, H);
     const RayGenerator rays(cam, W, H);
     int sphere_wins = 0, quad_wins = 0;
@@ -98,8 +98,8 @@ TEST(MarchRaster, FogCoversTrianglesAndMarchedSurfacesAlike) {
     Fog fog;
     fog.density = glm::vec3(0.3f);
     fog.colour = {0.2f, 0.3f, 0.4f};
-    const Result clear = render(64, nullptr);
-    const Result foggy = render(64, &fog);
+    const Result clear = render_scene(64, nullptr);
+    const Result foggy = render_scene(64, &fog);
     const Camera cam = march_camera(W, H);
     const RayGenerator rays(cam, W, H);
     for (int y = 0; y < H; y += 3)
@@ -119,9 +119,9 @@ TEST(MarchRaster, FrameIsIdenticalForAnyThreadCountAndTileSize) {
     Result one;
     {
         tbb::global_control single(tbb::global_control::max_allowed_parallelism, 1);
-        one = render(16, &fog);
+        one = render_scene(16, &fog);
     }
-    const Result many = render(64, &fog);
+    const Result many = render_scene(64, &fog);
     ASSERT_EQ(one.colour.size(), many.colour.size());
     EXPECT_EQ(std::memcmp(one.colour.data(), many.colour.data(), one.colour.size() * sizeof(glm::vec4)), 0);
     EXPECT_EQ(std::memcmp(one.vis.depth.data(), many.vis.depth.data(), one.vis.depth.size() * sizeof(float)), 0);

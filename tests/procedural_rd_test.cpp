@@ -10,7 +10,7 @@
 #include <cstring>
 #include <vector>
 
-#include "bench/rd_reference.h"
+#include "procedural/reaction_diffusion_reference.h"
 #include "procedural/rd_color.h"
 #include "procedural/rd_initial.h"
 #include "procedural/rd_presets.h"

@@ -6,26 +6,26 @@
 
 #include <cmath>
 
-#include "raster/rasterizer.h"
-#include "raster/reference_rasterizer.h"
+#include "raster/pipeline/rasterizer.h"
+#include "raster/pipeline/reference_rasterizer.h"
 #include "procedural/hash.h"
-#include "raster/camera.h"
-#include "raster/test_meshes.h"
+#include "raster/core/camera.h"
+#include "raster/workloads/test_meshes.h"
 
 namespace tessera {
 namespace {
 
-using test_meshes::WindowMesh;
+using workloads::WindowMesh;
 
 const glm::mat4 kIdentity(1.0f);
 
 // Renders `mesh` with both rasterizers and expects identical ids and depths.
 void expect_same_as_reference(const Mesh& mesh, const glm::mat4& vp, int w, int h,
-                              RasterOptions options = {}) {
+                              pipeline::RasterOptions options = {}) {
     VisibilityBuffer fast, reference;
-    Rasterizer rasterizer;
-    rasterizer.render(mesh, vp, Viewport(w, h), options, fast);
-    reference_rasterize(mesh, vp, Viewport(w, h), options, reference);
+    pipeline::Rasterizer rasterizer;
+    rasterizer.render(mesh, vp, pipeline::Viewport(w, h), options, fast);
+    pipeline::reference_rasterize(mesh, vp, pipeline::Viewport(w, h), options, reference);
     size_t id_mismatch = 0, depth_mismatch = 0, covered = 0;
     for (size_t i = 0; i < fast.triangle.size(); ++i) {
         id_mismatch += fast.triangle[i] != reference.triangle[i];
@@ -44,12 +44,12 @@ void expect_same_as_reference(const Mesh& mesh, const glm::mat4& vp, int w, int 
 // alone, so overlaps are counted).
 std::vector<int> coverage_count(const Mesh& mesh, int w, int h) {
     std::vector<int> count(size_t(w) * h, 0);
-    Rasterizer rasterizer;
+    pipeline::Rasterizer rasterizer;
     VisibilityBuffer vis;
     for (size_t t = 0; t < mesh.triangle_count(); ++t) {
         Mesh one = mesh;
         one.indices.assign(mesh.indices.begin() + 3 * t, mesh.indices.begin() + 3 * t + 3);
-        rasterizer.render(one, kIdentity, Viewport(w, h), {}, vis);
+        rasterizer.render(one, kIdentity, pipeline::Viewport(w, h), {}, vis);
         for (size_t i = 0; i < count.size(); ++i) count[i] += vis.triangle[i] != kNoTriangle;
     }
     return count;
@@ -57,14 +57,14 @@ std::vector<int> coverage_count(const Mesh& mesh, int w, int h) {
 
 TEST(RasterCoverage, RandomSmallTrianglesMatchReference) {
     const int w = 320, h = 200;
-    expect_same_as_reference(test_meshes::to_world(test_meshes::random_triangles(1, 3000, w, h, 12.0f), kIdentity, w, h),
+    expect_same_as_reference(workloads::to_world(workloads::random_triangles(1, 3000, w, h, 12.0f), kIdentity, w, h),
                              kIdentity, w, h);
 }
 
 TEST(RasterCoverage, RandomLargeTrianglesMatchReference) {
     const int w = 301, h = 217;  // odd sizes: partial tiles and stamps at the borders
     expect_same_as_reference(
-        test_meshes::to_world(test_meshes::random_triangles(2, 300, w, h, 400.0f, 100.0f), kIdentity, w, h),
+        workloads::to_world(workloads::random_triangles(2, 300, w, h, 400.0f, 100.0f), kIdentity, w, h),
         kIdentity, w, h);
 }
 
@@ -72,19 +72,19 @@ TEST(RasterCoverage, RandomLargeTrianglesMatchReference) {
 // case the top-left rule decides.
 TEST(RasterCoverage, TrianglesOnPixelGridMatchReference) {
     const int w = 200, h = 150;
-    WindowMesh m = test_meshes::random_triangles(5, 4000, w, h, 24.0f);
+    workloads::WindowMesh m = workloads::random_triangles(5, 4000, w, h, 24.0f);
     for (glm::vec3& p : m.positions) {
         p.x = std::round(p.x * 2.0f) * 0.5f;
         p.y = std::round(p.y * 2.0f) * 0.5f;
     }
-    expect_same_as_reference(test_meshes::to_world(m, kIdentity, w, h), kIdentity, w, h);
+    expect_same_as_reference(workloads::to_world(m, kIdentity, w, h), kIdentity, w, h);
 }
 
 // Slivers (one edge much shorter than the others, or nearly collinear vertices), zero-area
 // and repeated-vertex triangles.
 TEST(RasterCoverage, SliversAndDegeneratesMatchReference) {
     const int w = 256, h = 160;
-    WindowMesh m = test_meshes::random_triangles(6, 2000, w, h, 200.0f, 20.0f);
+    workloads::WindowMesh m = workloads::random_triangles(6, 2000, w, h, 200.0f, 20.0f);
     for (size_t t = 0; t < m.indices.size() / 3; ++t) {
         glm::vec3* p = &m.positions[3 * t];
         switch (t % 4) {
@@ -94,18 +94,18 @@ TEST(RasterCoverage, SliversAndDegeneratesMatchReference) {
             default: p[1] = p[0] + glm::vec3(0.004f, 300.0f, 0.0f); break;                      // needle
         }
     }
-    expect_same_as_reference(test_meshes::to_world(m, kIdentity, w, h), kIdentity, w, h);
+    expect_same_as_reference(workloads::to_world(m, kIdentity, w, h), kIdentity, w, h);
 }
 
 // Coordinates far beyond the viewport (guard band clipping) and beyond float-to-fixed range.
 TEST(RasterCoverage, HugeCoordinatesMatchReference) {
     const int w = 128, h = 96;
-    WindowMesh m = test_meshes::random_triangles(8, 600, w, h, 1e5f, 2e4f);
-    WindowMesh huge = test_meshes::random_triangles(9, 200, w, h, 1e9f, 1e8f);
+    workloads::WindowMesh m = workloads::random_triangles(8, 600, w, h, 1e5f, 2e4f);
+    workloads::WindowMesh huge = workloads::random_triangles(9, 200, w, h, 1e9f, 1e8f);
     for (uint32_t& i : huge.indices) i += uint32_t(m.positions.size());
     m.positions.insert(m.positions.end(), huge.positions.begin(), huge.positions.end());
     m.indices.insert(m.indices.end(), huge.indices.begin(), huge.indices.end());
-    expect_same_as_reference(test_meshes::to_world(m, kIdentity, w, h), kIdentity, w, h);
+    expect_same_as_reference(workloads::to_world(m, kIdentity, w, h), kIdentity, w, h);
 }
 
 // A perspective camera with triangles crossing the near plane and w = 0 (partly behind the
@@ -128,19 +128,19 @@ TEST(RasterCoverage, NearPlaneCrossingMatchesReference) {
             mesh.positions.push_back({r(-6.0f, 6.0f), r(-5.0f, 5.0f), r(-25.0f, 4.0f)});
         }
     }
-    RasterStats stats;
+    pipeline::RasterStats stats;
     VisibilityBuffer vis;
-    Rasterizer rasterizer;
-    rasterizer.render(mesh, camera.view_projection(), Viewport(w, h), {}, vis, {}, nullptr, &stats);
+    pipeline::Rasterizer rasterizer;
+    rasterizer.render(mesh, camera.view_projection(), pipeline::Viewport(w, h), {}, vis, {}, nullptr, &stats);
     EXPECT_GT(stats.clipped, 100u);
     expect_same_as_reference(mesh, camera.view_projection(), w, h);
 }
 
 TEST(RasterCoverage, BackAndFrontCullingMatchReference) {
     const int w = 160, h = 120;
-    const Mesh mesh = test_meshes::to_world(test_meshes::random_triangles(3, 500, w, h, 40.0f), kIdentity, w, h);
-    for (CullMode cull : {CullMode::back, CullMode::front}) {
-        RasterOptions options;
+    const Mesh mesh = workloads::to_world(workloads::random_triangles(3, 500, w, h, 40.0f), kIdentity, w, h);
+    for (pipeline::CullMode cull : {pipeline::CullMode::back, pipeline::CullMode::front}) {
+        pipeline::RasterOptions options;
         options.cull = cull;
         expect_same_as_reference(mesh, kIdentity, w, h, options);
     }
@@ -150,12 +150,12 @@ TEST(RasterCoverage, BackAndFrontCullingMatchReference) {
 // one triangle and 10 to the other.
 TEST(RasterCoverage, D3DDiagonalSplitGives15And10) {
     const int w = 16, h = 16;
-    WindowMesh square;
+    workloads::WindowMesh square;
     square.positions = {{2, 2, 0.5f}, {7, 2, 0.5f}, {7, 7, 0.5f}, {2, 7, 0.5f}};
     square.indices = {0, 1, 2, 0, 2, 3};
-    Rasterizer rasterizer;
+    pipeline::Rasterizer rasterizer;
     VisibilityBuffer vis;
-    rasterizer.render(test_meshes::to_world(square, kIdentity, w, h), kIdentity, Viewport(w, h), {}, vis);
+    rasterizer.render(workloads::to_world(square, kIdentity, w, h), kIdentity, pipeline::Viewport(w, h), {}, vis);
     int count[2] = {0, 0};
     for (uint32_t id : vis.triangle)
         if (id != kNoTriangle) ++count[id];
@@ -168,12 +168,12 @@ TEST(RasterCoverage, TopLeftRuleOnPixelCentres) {
     // A 4x4 square whose edges pass exactly through pixel centres: the left and top rows of
     // centres are inside, the right and bottom ones are not (16 pixels, not 25).
     const int w = 16, h = 16;
-    WindowMesh square;
+    workloads::WindowMesh square;
     square.positions = {{2.5f, 2.5f, 0.5f}, {6.5f, 2.5f, 0.5f}, {6.5f, 6.5f, 0.5f}, {2.5f, 6.5f, 0.5f}};
     square.indices = {0, 1, 2, 0, 2, 3};
-    Rasterizer rasterizer;
+    pipeline::Rasterizer rasterizer;
     VisibilityBuffer vis;
-    rasterizer.render(test_meshes::to_world(square, kIdentity, w, h), kIdentity, Viewport(w, h), {}, vis);
+    rasterizer.render(workloads::to_world(square, kIdentity, w, h), kIdentity, pipeline::Viewport(w, h), {}, vis);
     for (int y = 0; y < h; ++y)
         for (int x = 0; x < w; ++x)
             EXPECT_EQ(vis.triangle[size_t(y) * w + x] != kNoTriangle, x >= 2 && x < 6 && y >= 2 && y < 6)
@@ -182,7 +182,7 @@ TEST(RasterCoverage, TopLeftRuleOnPixelCentres) {
 
 TEST(RasterCoverage, JitteredGridIsWatertight) {
     const int w = 96, h = 80;
-    const Mesh mesh = test_meshes::to_world(test_meshes::grid(4, 9, 7, 0.0f, 0.0f, float(w), float(h), 0.4f),
+    const Mesh mesh = workloads::to_world(workloads::grid(4, 9, 7, 0.0f, 0.0f, float(w), float(h), 0.4f),
                                             kIdentity, w, h);
     const std::vector<int> count = coverage_count(mesh, w, h);
     for (size_t i = 0; i < count.size(); ++i) ASSERT_EQ(count[i], 1) << "pixel " << i % w << "," << i / w;
@@ -190,7 +190,7 @@ TEST(RasterCoverage, JitteredGridIsWatertight) {
 
 TEST(RasterCoverage, FanAroundPixelCentreIsWatertight) {
     const int w = 64, h = 64;
-    const Mesh mesh = test_meshes::to_world(test_meshes::fan({32.5f, 32.5f}, 20.0f, 37), kIdentity, w, h);
+    const Mesh mesh = workloads::to_world(workloads::fan({32.5f, 32.5f}, 20.0f, 37), kIdentity, w, h);
     const std::vector<int> count = coverage_count(mesh, w, h);
     for (size_t i = 0; i < count.size(); ++i) ASSERT_LE(count[i], 1) << "pixel " << i % w << "," << i / w;
     EXPECT_EQ(count[32 * w + 32], 1);  // the shared centre vertex's pixel belongs to exactly one

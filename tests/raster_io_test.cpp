@@ -7,17 +7,17 @@
 #include <filesystem>
 #include <fstream>
 
-#include "raster/camera_file.h"
-#include "raster/error.h"
-#include "raster/obj_loader.h"
-#include "raster/visibility_io.h"
+#include "raster/io/camera_file.h"
+#include "raster/core/error.h"
+#include "raster/io/obj_loader.h"
+#include "raster/io/visibility_io.h"
 
 namespace tessera {
 namespace {
 
 std::string error_of(const std::string& obj) {
     try {
-        parse_obj(obj, "t.obj");
+        io::parse_obj(obj, "t.obj");
     } catch (const Error& e) {
         return e.what();
     }
@@ -25,8 +25,8 @@ std::string error_of(const std::string& obj) {
 }
 
 TEST(RasterIo, ObjFanTriangulatesFromFirstVertexInFileOrder) {
-    ObjLoadStats stats;
-    const Mesh m = parse_obj("v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nv 2 2 0\nf 1 2 3 4\nf 5 1 3\n", "t.obj", &stats);
+    io::ObjLoadStats stats;
+    const Mesh m = io::parse_obj("v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nv 2 2 0\nf 1 2 3 4\nf 5 1 3\n", "t.obj", &stats);
     ASSERT_EQ(m.triangle_count(), 3u);
     auto p = [&](size_t t, int k) { return m.positions[m.indices[3 * t + k]]; };
     EXPECT_EQ(p(0, 0), glm::vec3(0, 0, 0));
@@ -41,7 +41,7 @@ TEST(RasterIo, ObjFanTriangulatesFromFirstVertexInFileOrder) {
 }
 
 TEST(RasterIo, ObjKeepsNormalsAndUvsPerCorner) {
-    const Mesh m = parse_obj("v 0 0 0\nv 1 0 0\nv 0 1 0\nvn 0 0 1\nvt 0.5 0.25\nf 1/1/1 2/1/1 3//1\n", "t.obj");
+    const Mesh m = io::parse_obj("v 0 0 0\nv 1 0 0\nv 0 1 0\nvn 0 0 1\nvt 0.5 0.25\nf 1/1/1 2/1/1 3//1\n", "t.obj");
     ASSERT_EQ(m.triangle_count(), 1u);
     ASSERT_EQ(m.normals.size(), m.positions.size());
     ASSERT_EQ(m.uvs.size(), m.positions.size());
@@ -59,8 +59,8 @@ TEST(RasterIo, ObjErrorsNameTheProblem) {
 }
 
 TEST(RasterIo, ObjBadVerticesMakeTheirTrianglesDegenerate) {
-    ObjLoadStats stats;
-    const Mesh m = parse_obj("v 0 0 0\nv 1 0 0\nv nan 1 0\nv 0 1e30 0\nv 1 1 0\nf 1 2 3\nf 1 2 5\nf 4 2 5\n", "t.obj", &stats);
+    io::ObjLoadStats stats;
+    const Mesh m = io::parse_obj("v 0 0 0\nv 1 0 0\nv nan 1 0\nv 0 1e30 0\nv 1 1 0\nf 1 2 3\nf 1 2 5\nf 4 2 5\n", "t.obj", &stats);
     ASSERT_EQ(m.triangle_count(), 3u);  // ids stay stable
     EXPECT_EQ(stats.bad_vertices, 2u);
     EXPECT_EQ(stats.skipped_triangles, 2u);
@@ -71,7 +71,7 @@ TEST(RasterIo, ObjBadVerticesMakeTheirTrianglesDegenerate) {
 
 TEST(RasterIo, MissingObjFileIsAnError) {
     try {
-        load_obj("/nonexistent/x.obj");
+        io::load_obj("/nonexistent/x.obj");
         FAIL() << "expected an error";
     } catch (const Error& e) {
         EXPECT_NE(std::string(e.what()).find("cannot read '/nonexistent/x.obj'"), std::string::npos);
@@ -85,8 +85,8 @@ TEST(RasterIo, WrittenObjReadsBack) {
     m.uvs = {{0, 0}, {1, 0}, {0, 1}};
     m.indices = {0, 1, 2};
     const auto path = std::filesystem::temp_directory_path() / "tessera_raster_io_test.obj";
-    write_obj(path, m);
-    const Mesh back = load_obj(path);
+    io::write_obj(path, m);
+    const Mesh back = io::load_obj(path);
     std::filesystem::remove(path);
     ASSERT_EQ(back.triangle_count(), 1u);
     for (int k = 0; k < 3; ++k) {
@@ -97,15 +97,15 @@ TEST(RasterIo, WrittenObjReadsBack) {
 
 TEST(RasterIo, CameraFileKeysAndErrors) {
     Camera c;
-    parse_camera("# cam\neye 1 2 3\nlookat 0 0 -1\nup 0 1 0\nfovy_deg 45\nnear 0.5\nfar 50\n", "c.txt", c);
+    io::parse_camera("# cam\neye 1 2 3\nlookat 0 0 -1\nup 0 1 0\nfovy_deg 45\nnear 0.5\nfar 50\n", "c.txt", c);
     EXPECT_EQ(c.eye, glm::vec3(1, 2, 3));
     EXPECT_EQ(c.fovy_deg, 45.0f);
     EXPECT_EQ(c.far, 50.0f);
-    EXPECT_NO_THROW(validate_camera(c));
-    EXPECT_THROW(parse_camera("eye 1 2\n", "c.txt", c), Error);
-    EXPECT_THROW(parse_camera("zoom 3\n", "c.txt", c), Error);
+    EXPECT_NO_THROW(io::validate_camera(c));
+    EXPECT_THROW(io::parse_camera("eye 1 2\n", "c.txt", c), Error);
+    EXPECT_THROW(io::parse_camera("zoom 3\n", "c.txt", c), Error);
     c.lookat = c.eye;
-    EXPECT_THROW(validate_camera(c), std::invalid_argument);
+    EXPECT_THROW(io::validate_camera(c), std::invalid_argument);
 }
 
 TEST(RasterIo, TsidAndPfmLayout) {
@@ -114,9 +114,9 @@ TEST(RasterIo, TsidAndPfmLayout) {
     v.triangle = {1, 2, 3, 4, 5, kNoTriangle};
     v.depth = {0.1f, 0.2f, 0.3f, 0.4f, 0.5f, 1.0f};
     const auto dir = std::filesystem::temp_directory_path();
-    write_tsid(dir / "t.id", v);
-    EXPECT_EQ(read_tsid(dir / "t.id").triangle, v.triangle);
-    write_depth_pfm(dir / "t.pfm", v);
+    io::write_tsid(dir / "t.id", v);
+    EXPECT_EQ(io::read_tsid(dir / "t.id").triangle, v.triangle);
+    io::write_depth_pfm(dir / "t.pfm", v);
     std::ifstream pfm(dir / "t.pfm", std::ios::binary);
     std::string text((std::istreambuf_iterator<char>(pfm)), {});
     ASSERT_EQ(text.rfind("Pf\n3 2\n-1.0\n", 0), 0u);

@@ -11,11 +11,11 @@
 #include <map>
 #include <mutex>
 
-#include "raster/barycentrics.h"
-#include "raster/camera.h"
-#include "raster/rasterizer.h"
-#include "raster/reference_rasterizer.h"
-#include "raster/test_meshes.h"
+#include "raster/pipeline/barycentrics.h"
+#include "raster/core/camera.h"
+#include "raster/pipeline/rasterizer.h"
+#include "raster/pipeline/reference_rasterizer.h"
+#include "raster/workloads/test_meshes.h"
 
 namespace tessera {
 namespace {
@@ -26,11 +26,11 @@ const glm::mat4 kIdentity(1.0f);
 // evaluated in double, to a few float ulps.
 TEST(RasterPipeline, DepthMatchesAnalyticPlane) {
     const int w = 64, h = 48;
-    test_meshes::WindowMesh m;
+    workloads::WindowMesh m;
     m.positions = {{3.25f, 2.5f, 0.2f}, {60.0f, 9.75f, 0.9f}, {11.5f, 45.125f, 0.55f}};
     m.indices = {0, 1, 2};
     VisibilityBuffer vis;
-    Rasterizer().render(test_meshes::to_world(m, kIdentity, w, h), kIdentity, Viewport(w, h), {}, vis);
+    pipeline::Rasterizer().render(workloads::to_world(m, kIdentity, w, h), kIdentity, pipeline::Viewport(w, h), {}, vis);
     const glm::dvec3 p0 = m.positions[0], p1 = m.positions[1], p2 = m.positions[2];
     const glm::dvec3 n = glm::cross(p1 - p0, p2 - p0);
     int covered = 0;
@@ -61,13 +61,13 @@ TEST(RasterPipeline, PerspectiveBarycentricsHitThePixelRay) {
     mesh.indices = {0, 1, 2};
     const glm::mat4 vp = camera.view_projection();
     VisibilityBuffer vis;
-    Rasterizer rasterizer;
-    RasterStats stats;
-    rasterizer.render(mesh, vp, Viewport(w, h), {}, vis, {}, nullptr, &stats);
+    pipeline::Rasterizer rasterizer;
+    pipeline::RasterStats stats;
+    rasterizer.render(mesh, vp, pipeline::Viewport(w, h), {}, vis, {}, nullptr, &stats);
     EXPECT_EQ(stats.clipped, 1u);
     glm::vec4 clip[3];
     for (int k = 0; k < 3; ++k) clip[k] = vp * glm::vec4(mesh.positions[k], 1.0f);
-    const auto b = PerspectiveBarycentrics::from_clip(clip[0], clip[1], clip[2], w, h);
+    const auto b = pipeline::PerspectiveBarycentrics::from_clip(clip[0], clip[1], clip[2], w, h);
     int covered = 0;
     for (int y = 0; y < h; ++y)
         for (int x = 0; x < w; ++x) {
@@ -89,7 +89,7 @@ TEST(RasterPipeline, PerspectiveBarycentricsHitThePixelRay) {
 
 // Also in SIMD lanes: the vector form gives the scalar form's bits.
 TEST(RasterPipeline, BarycentricsSimdEqualsScalar) {
-    const auto b = PerspectiveBarycentrics::from_clip({-1, -1, 0, 1}, {3, -2, 1, 4}, {0.5f, 2, 0.3f, 2}, 64, 32);
+    const auto b = pipeline::PerspectiveBarycentrics::from_clip({-1, -1, 0, 1}, {3, -2, 1, 4}, {0.5f, 2, 0.3f, 2}, 64, 32);
     alignas(64) float xs[simd::kLanes], ys[simd::kLanes], l[3][simd::kLanes];
     for (int i = 0; i < simd::kLanes; ++i) {
         xs[i] = 3.5f + float(i) * 1.75f;
@@ -113,7 +113,7 @@ TEST(RasterPipeline, BarycentricsSimdEqualsScalar) {
 // group (16 x 4 pixels), so tiles end in partial groups.
 constexpr int kSphereWidth = 333, kSphereHeight = 201;
 struct SphereView {
-    Mesh mesh = test_meshes::sphere(120, 60);
+    Mesh mesh = workloads::sphere(120, 60);
     glm::mat4 vp;
     SphereView() {
         Camera camera;
@@ -130,14 +130,14 @@ TEST(RasterPipeline, DeterministicAcrossThreadsAndTileSizes) {
     const Mesh& mesh = view.mesh;
     const glm::mat4& vp = view.vp;
     VisibilityBuffer reference;
-    reference_rasterize(mesh, vp, Viewport(w, h), {}, reference);
+    pipeline::reference_rasterize(mesh, vp, pipeline::Viewport(w, h), {}, reference);
     for (int threads : {1, 2}) {
         tbb::global_control limit(tbb::global_control::max_allowed_parallelism, size_t(threads));
         for (int tile : {16, 32, 64, 128, 256}) {
-            RasterOptions options;
+            pipeline::RasterOptions options;
             options.tile_size = tile;
             VisibilityBuffer vis;
-            Rasterizer().render(mesh, vp, Viewport(w, h), options, vis);
+            pipeline::Rasterizer().render(mesh, vp, pipeline::Viewport(w, h), options, vis);
             EXPECT_TRUE(vis.triangle == reference.triangle) << threads << " threads, tile " << tile;
             EXPECT_TRUE(vis.depth == reference.depth) << threads << " threads, tile " << tile;
         }
@@ -152,21 +152,21 @@ TEST(RasterPipeline, DepthOnlyGivesTheSameDepth) {
     const Mesh& mesh = view.mesh;
     const glm::mat4& vp = view.vp;
     VisibilityBuffer full, depth_only;
-    Rasterizer rasterizer;
-    rasterizer.render(mesh, vp, Viewport(w, h), {}, full);
-    RasterOptions options;
+    pipeline::Rasterizer rasterizer;
+    rasterizer.render(mesh, vp, pipeline::Viewport(w, h), {}, full);
+    pipeline::RasterOptions options;
     options.depth_only = true;
     for (int tile : {16, 128}) {
         options.tile_size = tile;
-        rasterizer.render(mesh, vp, Viewport(w, h), options, depth_only);
+        rasterizer.render(mesh, vp, pipeline::Viewport(w, h), options, depth_only);
         EXPECT_TRUE(depth_only.depth == full.depth) << "tile " << tile;
         EXPECT_TRUE(depth_only.triangle.empty());
     }
     size_t covered = 0;
     for (float z : full.depth) covered += z < 1.0f;
     EXPECT_GT(covered, size_t(w * h / 4));
-    const std::vector<TilePass> passes = {[](const TileContext&) {}};
-    EXPECT_THROW(rasterizer.render(mesh, vp, Viewport(w, h), options, depth_only, passes),
+    const std::vector<pipeline::TilePass> passes = {[](const pipeline::TileContext&) {}};
+    EXPECT_THROW(rasterizer.render(mesh, vp, pipeline::Viewport(w, h), options, depth_only, passes),
                  std::invalid_argument);
 }
 
@@ -174,10 +174,10 @@ TEST(RasterPipeline, DepthOnlyGivesTheSameDepth) {
 // it writes reaches the frame.
 TEST(RasterPipeline, TilePassesSeeEveryPixelOnce) {
     const int w = 150, h = 97;
-    const Mesh mesh = test_meshes::to_world(test_meshes::random_triangles(3, 400, w, h, 30.0f), kIdentity, w, h);
+    const Mesh mesh = workloads::to_world(workloads::random_triangles(3, 400, w, h, 30.0f), kIdentity, w, h);
     std::vector<std::atomic<int>> visits(size_t(w) * h);
-    const TilePass passes[] = {
-        [&](const TileContext& ctx) {
+    const pipeline::TilePass passes[] = {
+        [&](const pipeline::TileContext& ctx) {
             for (int y = ctx.rect.y0; y < ctx.rect.y1; ++y)
                 for (int x = ctx.rect.x0; x < ctx.rect.x1; ++x) {
                     ++visits[size_t(y) * w + x];
@@ -188,9 +188,9 @@ TEST(RasterPipeline, TilePassesSeeEveryPixelOnce) {
         }};
     VisibilityBuffer vis;
     std::vector<glm::vec4> color;
-    RasterOptions options;
+    pipeline::RasterOptions options;
     options.tile_size = 32;
-    Rasterizer().render(mesh, kIdentity, Viewport(w, h), options, vis, passes, &color);
+    pipeline::Rasterizer().render(mesh, kIdentity, pipeline::Viewport(w, h), options, vis, passes, &color);
     for (int y = 0; y < h; ++y)
         for (int x = 0; x < w; ++x) {
             const size_t i = size_t(y) * w + x;
@@ -204,10 +204,10 @@ TEST(RasterPipeline, TilePassesSeeEveryPixelOnce) {
 // the same fragments in the same order whatever the tile size.
 TEST(RasterPipeline, TransparentFragmentsInSubmissionOrder) {
     const int w = 120, h = 90;
-    const Mesh mesh = test_meshes::to_world(test_meshes::random_triangles(4, 600, w, h, 40.0f), kIdentity, w, h);
+    const Mesh mesh = workloads::to_world(workloads::random_triangles(4, 600, w, h, 40.0f), kIdentity, w, h);
     std::vector<uint8_t> transparent(mesh.triangle_count());
     for (size_t t = 0; t < transparent.size(); ++t) transparent[t] = t % 3 == 0;
-    RasterOptions options;
+    pipeline::RasterOptions options;
     options.transparent = transparent;
     using Seen = std::vector<std::vector<std::pair<uint32_t, float>>>;  // per pixel: (triangle, depth)
     VisibilityBuffer vis;
@@ -215,13 +215,13 @@ TEST(RasterPipeline, TransparentFragmentsInSubmissionOrder) {
         options.tile_size = tile_size;
         Seen seen(size_t(w) * h);
         std::mutex mutex;
-        const TilePass passes[] = {[&](const TileContext& ctx) {
-            ctx.for_each_transparent([&](uint32_t id, std::span<const Fragment> fragments) {
+        const pipeline::TilePass passes[] = {[&](const pipeline::TileContext& ctx) {
+            ctx.for_each_transparent([&](uint32_t id, std::span<const pipeline::Fragment> fragments) {
                 std::lock_guard lock(mutex);
-                for (const Fragment& f : fragments) seen[size_t(f.y) * w + f.x].push_back({id, f.depth});
+                for (const pipeline::Fragment& f : fragments) seen[size_t(f.y) * w + f.x].push_back({id, f.depth});
             });
         }};
-        Rasterizer().render(mesh, kIdentity, Viewport(w, h), options, vis, passes);
+        pipeline::Rasterizer().render(mesh, kIdentity, pipeline::Viewport(w, h), options, vis, passes);
         return seen;
     };
     // Each pixel lies in one tile, whose callbacks come in submission order: deterministic.
@@ -232,7 +232,7 @@ TEST(RasterPipeline, TransparentFragmentsInSubmissionOrder) {
 
     // Expected: each transparent triangle alone through the reference, in front of the opaque.
     VisibilityBuffer opaque;
-    reference_rasterize(mesh, kIdentity, Viewport(w, h), options, opaque);
+    pipeline::reference_rasterize(mesh, kIdentity, pipeline::Viewport(w, h), options, opaque);
     EXPECT_TRUE(vis.triangle == opaque.triangle);
     size_t fragments = 0;
     for (size_t t = 0; t < transparent.size(); ++t) {
@@ -240,7 +240,7 @@ TEST(RasterPipeline, TransparentFragmentsInSubmissionOrder) {
         Mesh one = mesh;
         one.indices.assign(mesh.indices.begin() + 3 * t, mesh.indices.begin() + 3 * t + 3);
         VisibilityBuffer alone;
-        reference_rasterize(one, kIdentity, Viewport(w, h), {}, alone);
+        pipeline::reference_rasterize(one, kIdentity, pipeline::Viewport(w, h), {}, alone);
         for (size_t i = 0; i < alone.triangle.size(); ++i) {
             const bool expected = alone.triangle[i] != kNoTriangle && alone.depth[i] < opaque.depth[i];
             const auto it = std::find_if(seen[i].begin(), seen[i].end(), [&](auto& s) { return s.first == t; });

@@ -12,10 +12,12 @@
 #include <string>
 #include <tuple>
 
-#include "raster/camera.h"
-#include "raster/error.h"
-#include "raster/image_stream.h"
+#include "raster/core/camera.h"
+#include "raster/core/error.h"
+#include "raster/io/image_stream.h"
+#include "raster/output/frame_encoding.h"
 #include "raster/render/frame_renderer.h"
+#include "raster/scene_file/scene_build.h"
 #include "raster/scene_file/scene_parse.h"
 
 namespace fs = std::filesystem;
@@ -43,16 +45,16 @@ const char* kEveryStage = R"({
   ]
 })";
 
-AnimatedScene every_stage() {
+render::AnimatedScene every_stage() {
     std::vector<std::string> warnings;
-    AnimatedScene s = build_scene(parse_scene(kEveryStage, "bands.json", warnings));
+    render::AnimatedScene s = scene_file::build_scene(scene_file::parse_scene(kEveryStage, "bands.json", warnings));
     EXPECT_TRUE(warnings.empty()) << warnings.front();
     return s;
 }
 
 // The banded frame assembled in memory, checking that bands arrive in order with the
 // layout's rows.
-Frame render_in_bands(FrameRenderer& renderer, const BandLayout& layout, float time) {
+Frame render_in_bands(render::FrameRenderer& renderer, const render::BandLayout& layout, float time) {
     Frame whole(layout.width, layout.height);
     int expected = 0;
     renderer.render_bands(time, layout, [](int) { return true; }, [&](int b, const Frame& band) {
@@ -92,17 +94,17 @@ TEST(CameraRegion, SeesEveryPointAtThePixelTheWholeFrameDoes) {
     EXPECT_TRUE(c.region(1000, 700, 0, 0, 1000, 700).window.whole());
 }
 
-class RenderBands : public ::testing::TestWithParam<std::tuple<RendererKind, ShadowMode>> {};
+class RenderBands : public ::testing::TestWithParam<std::tuple<render::RendererKind, render::ShadowMode>> {};
 
 TEST_P(RenderBands, AgreeWithTheWholeFrameExceptOnTriangleEdges) {
     const auto [renderer_kind, shadows] = GetParam();
     constexpr int kWidth = 320, kHeight = 200;
-    AnimatedScene scene = every_stage();
-    FrameRenderer renderer(scene, kWidth, kHeight, renderer_kind, shadows);
+    render::AnimatedScene scene = every_stage();
+    render::FrameRenderer renderer(scene, kWidth, kHeight, renderer_kind, shadows);
     const Frame whole = renderer.render(0.7f);
     // Bands of 48 rows cut into regions 100 wide: seams in both directions, a short last band
     // and a narrow last region.
-    const BandLayout layout{kWidth, kHeight, 48, 100};
+    const render::BandLayout layout{kWidth, kHeight, 48, 100};
     const Frame banded = render_in_bands(renderer, layout, 0.7f);
 
     int differing = 0;
@@ -119,13 +121,13 @@ TEST_P(RenderBands, AgreeWithTheWholeFrameExceptOnTriangleEdges) {
 }
 
 INSTANTIATE_TEST_SUITE_P(RenderFrame, RenderBands,
-                         ::testing::Combine(::testing::Values(RendererKind::raster, RendererKind::raytrace),
-                                            ::testing::Values(ShadowMode::none, ShadowMode::map, ShadowMode::rays)));
+                         ::testing::Combine(::testing::Values(render::RendererKind::raster, render::RendererKind::raytrace),
+                                            ::testing::Values(render::ShadowMode::none, render::ShadowMode::map, render::ShadowMode::rays)));
 
 TEST(RenderBands, OnlyTheChosenBandsAreRenderedAndTheyAreTheSame) {
-    AnimatedScene scene = every_stage();
-    FrameRenderer renderer(scene, 160, 100, RendererKind::raster, ShadowMode::map);
-    const BandLayout layout{160, 100, 32, 64};
+    render::AnimatedScene scene = every_stage();
+    render::FrameRenderer renderer(scene, 160, 100, render::RendererKind::raster, render::ShadowMode::map);
+    const render::BandLayout layout{160, 100, 32, 64};
     const Frame all = render_in_bands(renderer, layout, 0.2f);
     std::vector<int> seen;
     renderer.render_bands(0.2f, layout, [](int b) { return b % 2 == 1; }, [&](int b, const Frame& band) {
@@ -138,19 +140,19 @@ TEST(RenderBands, OnlyTheChosenBandsAreRenderedAndTheyAreTheSame) {
 }
 
 TEST(RenderBands, LayoutFollowsTheFrameSizeAlone) {
-    EXPECT_FALSE(needs_bands(7680, 4320));
-    EXPECT_FALSE(needs_bands(8192, 8192));
-    EXPECT_TRUE(needs_bands(8193, 100));
-    EXPECT_TRUE(needs_bands(100, 16384));
-    const BandLayout l = band_layout(16384, 16384);
+    EXPECT_FALSE(render::needs_bands(7680, 4320));
+    EXPECT_FALSE(render::needs_bands(8192, 8192));
+    EXPECT_TRUE(render::needs_bands(8193, 100));
+    EXPECT_TRUE(render::needs_bands(100, 16384));
+    const render::BandLayout l = render::band_layout(16384, 16384);
     EXPECT_EQ(l.band_rows % 128, 0);
-    EXPECT_LE(l.region_width, kMaxViewport);
+    EXPECT_LE(l.region_width, pipeline::kMaxViewport);
     EXPECT_LE(int64_t(l.band_rows) * l.width, int64_t(1) << 23);
     EXPECT_EQ(l.rows(l.bands() - 1).second, 16384);
-    EXPECT_EQ(band_layout(300, 100).bands(), 1);
-    AnimatedScene scene = every_stage();
-    FrameRenderer renderer(scene, 100, 60, RendererKind::raster, ShadowMode::none);
-    EXPECT_THROW(renderer.render_bands(0.0f, BandLayout{120, 60, 16, 64}, [](int) { return true; },
+    EXPECT_EQ(render::band_layout(300, 100).bands(), 1);
+    render::AnimatedScene scene = every_stage();
+    render::FrameRenderer renderer(scene, 100, 60, render::RendererKind::raster, render::ShadowMode::none);
+    EXPECT_THROW(renderer.render_bands(0.0f, render::BandLayout{120, 60, 16, 64}, [](int) { return true; },
                                        [](int, const Frame&) {}),
                  std::invalid_argument);
 }
@@ -171,12 +173,12 @@ Frame gradient(int w, int h) {
 }
 
 void stream(const fs::path& path, const Frame& frame, int band_rows) {
-    ImageStream file(path, frame.width, frame.height, 4, frame_pixel_type(path));
+    io::ImageStream file(path, frame.width, frame.height, 4, output::frame_pixel_type(path));
     for (int y0 = 0; y0 < frame.height; y0 += band_rows) {
         const int rows = std::min(band_rows, frame.height - y0);
         Frame band(frame.width, rows);
         std::copy_n(frame.pixels.begin() + ptrdiff_t(y0) * frame.width, size_t(rows) * frame.width, band.pixels.begin());
-        file.write_rows(y0, encode_frame(path, band).view());
+        file.write_rows(y0, output::encode_frame(path, band).view());
     }
     file.commit();
 }
@@ -188,8 +190,8 @@ TEST(ImageStream, BandsMakeTheSameImageAsAWholeWrite) {
     for (const char* name : {"s.exr", "s.tif", "s.png"}) {
         const fs::path streamed = scratch(name), whole = scratch(std::string("whole_") + name);
         stream(streamed, frame, 64);
-        write_frame(whole, frame);
-        const FloatImage a = read_image(streamed), b = read_image(whole);
+        output::write_frame(whole, frame);
+        const io::FloatImage a = io::read_image(streamed), b = io::read_image(whole);
         ASSERT_EQ(a.width, 200);
         ASSERT_EQ(a.height, 150);
         EXPECT_EQ(a.pixels, b.pixels) << name;
@@ -201,17 +203,17 @@ TEST(ImageStream, OutOfOrderOrMissingRowsAreErrorsAndLeaveNothing) {
     const fs::path path = scratch("broken.exr");
     const Frame band = gradient(64, 64);
     {
-        ImageStream file(path, 64, 200, 4, PixelType::f32);
-        EXPECT_THROW(file.write_rows(64, encode_frame(path, band).view()), Error);  // row 0 first
+        io::ImageStream file(path, 64, 200, 4, io::PixelType::f32);
+        EXPECT_THROW(file.write_rows(64, output::encode_frame(path, band).view()), Error);  // row 0 first
     }
     {
-        ImageStream file(path, 64, 200, 4, PixelType::f32);
-        file.write_rows(0, encode_frame(path, band).view());
+        io::ImageStream file(path, 64, 200, 4, io::PixelType::f32);
+        file.write_rows(0, output::encode_frame(path, band).view());
         EXPECT_THROW(file.commit(), Error);  // 136 rows never came
     }
     {
-        ImageStream file(path, 64, 200, 4, PixelType::f32);
-        file.write_rows(0, encode_frame(path, band).view());
+        io::ImageStream file(path, 64, 200, 4, io::PixelType::f32);
+        file.write_rows(0, output::encode_frame(path, band).view());
     }  // abandoned: no commit
     EXPECT_FALSE(fs::exists(path));
     EXPECT_TRUE(fs::is_empty(path.parent_path())) << "a temporary was left behind";
@@ -226,8 +228,8 @@ TEST(ImageStream, FullDeviceIsAnError) {
     for (const char* ext : {".png", ".exr"}) {
         EXPECT_THROW(
             {
-                ImageStream file(fs::path("/dev/full"), 256, 128, 4, frame_pixel_type(std::string("x") + ext));
-                file.write_rows(0, encode_frame(std::string("x") + ext, frame).view());
+                io::ImageStream file(fs::path("/dev/full"), 256, 128, 4, output::frame_pixel_type(std::string("x") + ext));
+                file.write_rows(0, output::encode_frame(std::string("x") + ext, frame).view());
                 file.commit();
             },
             Error)

@@ -11,8 +11,9 @@
 #include <string>
 
 #include "raster/render/frame_renderer.h"
+#include "raster/scene_file/scene_build.h"
 #include "raster/scene_file/scene_parse.h"
-#include "raster/trace.h"
+#include "raster/core/trace.h"
 
 namespace fs = std::filesystem;
 using namespace tessera;
@@ -32,18 +33,18 @@ const char* kBallOverFloor = R"({
   ]
 })";
 
-AnimatedScene scene_from(const std::string& json) {
+render::AnimatedScene scene_from(const std::string& json) {
     std::vector<std::string> warnings;
-    AnimatedScene s = build_scene(parse_scene(json, "test.json", warnings));
+    render::AnimatedScene s = scene_file::build_scene(scene_file::parse_scene(json, "test.json", warnings));
     EXPECT_TRUE(warnings.empty());
     return s;
 }
 
-Frame render(const std::string& json, int w, int h, RendererKind r, ShadowMode s, int threads = 0) {
+Frame render_scene(const std::string& json, int w, int h, render::RendererKind r, render::ShadowMode s, int threads = 0) {
     std::unique_ptr<tbb::global_control> limit;
     if (threads > 0) limit = std::make_unique<tbb::global_control>(tbb::global_control::max_allowed_parallelism, threads);
-    AnimatedScene scene = scene_from(json);
-    FrameRenderer renderer(scene, w, h, r, s);
+    render::AnimatedScene scene = scene_from(json);
+    render::FrameRenderer renderer(scene, w, h, r, s);
     return renderer.render(0.5f);
 }
 
@@ -61,12 +62,12 @@ glm::ivec2 pixel_of(glm::vec3 p, int w, int h) {
 
 }  // namespace
 
-class RenderShadows : public ::testing::TestWithParam<ShadowMode> {};
+class RenderShadows : public ::testing::TestWithParam<render::ShadowMode> {};
 
 TEST_P(RenderShadows, DarkenOnlyTheFloorUnderTheBall) {
     const int w = 160, h = 120;
-    const Frame lit = render(kBallOverFloor, w, h, RendererKind::raster, ShadowMode::none);
-    const Frame shadowed = render(kBallOverFloor, w, h, RendererKind::raster, GetParam());
+    const Frame lit = render_scene(kBallOverFloor, w, h, render::RendererKind::raster, render::ShadowMode::none);
+    const Frame shadowed = render_scene(kBallOverFloor, w, h, render::RendererKind::raster, GetParam());
     // Under the ball (the light is straight above): only ambient ka La remains.
     const glm::ivec2 under = pixel_of({0.0f, -1.0f, 0.3f}, w, h);
     const glm::vec4 a = lit.at(under.x, under.y), b = shadowed.at(under.x, under.y);
@@ -81,14 +82,14 @@ TEST_P(RenderShadows, DarkenOnlyTheFloorUnderTheBall) {
     EXPECT_EQ(lit.at(top.x, top.y), shadowed.at(top.x, top.y));
 }
 
-INSTANTIATE_TEST_SUITE_P(RenderFrame, RenderShadows, ::testing::Values(ShadowMode::rays, ShadowMode::map),
-                         [](const auto& info) { return info.param == ShadowMode::rays ? "rays" : "map"; });
+INSTANTIATE_TEST_SUITE_P(RenderFrame, RenderShadows, ::testing::Values(render::ShadowMode::rays, render::ShadowMode::map),
+                         [](const auto& info) { return info.param == render::ShadowMode::rays ? "rays" : "map"; });
 
 TEST(RenderFrame, RasterAndRayCastAgreeAwayFromEdges) {
     const int w = 160, h = 120;
-    for (ShadowMode s : {ShadowMode::none, ShadowMode::rays}) {
-        const Frame a = render(kBallOverFloor, w, h, RendererKind::raster, s);
-        const Frame b = render(kBallOverFloor, w, h, RendererKind::raytrace, s);
+    for (render::ShadowMode s : {render::ShadowMode::none, render::ShadowMode::rays}) {
+        const Frame a = render_scene(kBallOverFloor, w, h, render::RendererKind::raster, s);
+        const Frame b = render_scene(kBallOverFloor, w, h, render::RendererKind::raytrace, s);
         size_t differ = 0;
         for (size_t i = 0; i < a.pixels.size(); ++i)
             differ += glm::length(a.pixels[i] - b.pixels[i]) > 2.0f / 255.0f;
@@ -117,8 +118,8 @@ const char* kGlass = R"({
 
 TEST(RenderFrame, RayCastBlendsTransparencyAsTheRasterizerDoes) {
     const int w = 160, h = 120;
-    const Frame raster = render(kGlass, w, h, RendererKind::raster, ShadowMode::none);
-    const Frame rays = render(kGlass, w, h, RendererKind::raytrace, ShadowMode::none);
+    const Frame raster = render_scene(kGlass, w, h, render::RendererKind::raster, render::ShadowMode::none);
+    const Frame rays = render_scene(kGlass, w, h, render::RendererKind::raytrace, render::ShadowMode::none);
     size_t differ = 0;
     for (size_t i = 0; i < raster.pixels.size(); ++i)
         differ += glm::length(raster.pixels[i] - rays.pixels[i]) > 2.0f / 255.0f;
@@ -134,26 +135,26 @@ TEST(RenderFrame, RayCastBlendsTransparencyAsTheRasterizerDoes) {
 }
 
 TEST(RenderFrame, SameBytesWithOneAndTwoThreads) {
-    for (ShadowMode s : {ShadowMode::none, ShadowMode::rays, ShadowMode::map})
-        for (RendererKind r : {RendererKind::raster, RendererKind::raytrace}) {
-            const Frame one = render(kBallOverFloor, 96, 64, r, s, 1);
-            const Frame two = render(kBallOverFloor, 96, 64, r, s, 2);
+    for (render::ShadowMode s : {render::ShadowMode::none, render::ShadowMode::rays, render::ShadowMode::map})
+        for (render::RendererKind r : {render::RendererKind::raster, render::RendererKind::raytrace}) {
+            const Frame one = render_scene(kBallOverFloor, 96, 64, r, s, 1);
+            const Frame two = render_scene(kBallOverFloor, 96, 64, r, s, 2);
             ASSERT_EQ(one.pixels.size(), two.pixels.size());
             EXPECT_EQ(0, std::memcmp(one.pixels.data(), two.pixels.data(), one.pixels.size() * sizeof(glm::vec4)));
         }
 }
 
 TEST(RenderFrame, RejectsWhatItCannotDo) {
-    AnimatedScene scene = scene_from(kBallOverFloor);
-    EXPECT_THROW(FrameRenderer(scene, 0, 10, RendererKind::raster, ShadowMode::none), std::invalid_argument);
-    EXPECT_THROW(parse_renderer("gpu"), std::invalid_argument);
-    EXPECT_THROW(parse_shadow_mode("soft"), std::invalid_argument);
+    render::AnimatedScene scene = scene_from(kBallOverFloor);
+    EXPECT_THROW(render::FrameRenderer(scene, 0, 10, render::RendererKind::raster, render::ShadowMode::none), std::invalid_argument);
+    EXPECT_THROW(render::parse_renderer("gpu"), std::invalid_argument);
+    EXPECT_THROW(render::parse_shadow_mode("soft"), std::invalid_argument);
 }
 
 TEST(RenderFrame, TraceHasWorkerTracksAndStageAndTileSlices) {
     const tbb::global_control limit(tbb::global_control::max_allowed_parallelism, 2);
-    AnimatedScene scene = scene_from(kBallOverFloor);
-    FrameRenderer renderer(scene, 256, 192, RendererKind::raster, ShadowMode::rays);
+    render::AnimatedScene scene = scene_from(kBallOverFloor);
+    render::FrameRenderer renderer(scene, 256, 192, render::RendererKind::raster, render::ShadowMode::rays);
     Trace trace;
     trace.activate();
     {

@@ -12,7 +12,7 @@
 using namespace tessera;
 
 TEST(SceneTransform, SeedOrderScaleRotateTranslateAndInverse) {
-    Transform t;
+    scene::Transform t;
     t.scale = {2.0f, 1.0f, 1.0f};
     t.axis = {0, 0, 1};
     t.angle = glm::half_pi<float>();
@@ -28,7 +28,7 @@ TEST(SceneTransform, SeedOrderScaleRotateTranslateAndInverse) {
 }
 
 TEST(SceneTransform, NormalsStayPerpendicularUnderNonUniformScale) {
-    Transform t;
+    scene::Transform t;
     t.scale = {3.0f, 0.5f, 1.0f};
     t.axis = {1, 1, 0};
     t.angle = 0.7f;
@@ -41,13 +41,13 @@ TEST(SceneTransform, NormalsStayPerpendicularUnderNonUniformScale) {
 
 namespace {
 
-Scene two_objects() {
-    Scene scene;
-    scene.materials = {Material{}, Material{}};
-    scene.materials[1].model = ShadingModel::toon;
-    auto sphere = std::make_shared<const Mesh>(tessellate(sphere_surface({0, 0, 0}, 1.0f), 8, 4));
-    Object a{"a", sphere, 0, {}, {}};
-    Object b{"b", sphere, 1, {}, {}};
+scene::Scene two_objects() {
+    scene::Scene scene;
+    scene.materials = {scene::Material{}, scene::Material{}};
+    scene.materials[1].model = scene::ShadingModel::toon;
+    auto sphere = std::make_shared<const Mesh>(geometry::tessellate(geometry::sphere_surface({0, 0, 0}, 1.0f), 8, 4));
+    scene::Object a{"a", sphere, 0, {}, {}};
+    scene::Object b{"b", sphere, 1, {}, {}};
     b.transform.translation = {5, 0, 0};
     b.transform.scale = {-1, 1, 1};  // a mirror
     scene.objects = {a, b};
@@ -57,8 +57,8 @@ Scene two_objects() {
 }  // namespace
 
 TEST(SceneBake, ConcatenatesInOrderWithMaterialsAndMirroredWinding) {
-    const Scene scene = two_objects();
-    const BakedScene baked = bake(scene);
+    const scene::Scene scene = two_objects();
+    const scene::BakedScene baked = scene::bake(scene);
     const size_t nv = scene.objects[0].geometry->vertex_count(), nt = scene.objects[0].geometry->triangle_count();
     ASSERT_EQ(baked.mesh.vertex_count(), 2 * nv);
     ASSERT_EQ(baked.mesh.triangle_count(), 2 * nt);
@@ -83,33 +83,33 @@ TEST(SceneBake, ConcatenatesInOrderWithMaterialsAndMirroredWinding) {
 }
 
 TEST(SceneBake, SameBytesWhateverTheThreadCount) {
-    const Scene scene = two_objects();
-    BakedScene one;
+    const scene::Scene scene = two_objects();
+    scene::BakedScene one;
     {
         tbb::global_control limit(tbb::global_control::max_allowed_parallelism, 1);
-        one = bake(scene);
+        one = scene::bake(scene);
     }
-    const BakedScene many = bake(scene);
+    const scene::BakedScene many = scene::bake(scene);
     EXPECT_EQ(one.mesh.positions, many.mesh.positions);
     EXPECT_EQ(one.mesh.normals, many.mesh.normals);
     EXPECT_EQ(one.mesh.indices, many.mesh.indices);
 }
 
 TEST(SceneBake, BadReferencesAreClearErrors) {
-    Scene scene = two_objects();
+    scene::Scene scene = two_objects();
     scene.objects[1].material = 7;
-    EXPECT_THROW(bake(scene), std::invalid_argument);
+    EXPECT_THROW(scene::bake(scene), std::invalid_argument);
     scene = two_objects();
     scene.objects[0].geometry = nullptr;
-    EXPECT_THROW(bake(scene), std::invalid_argument);
+    EXPECT_THROW(scene::bake(scene), std::invalid_argument);
     scene = two_objects();
     scene.materials[0].diffuse_texture = 3;
-    EXPECT_THROW(bake(scene), std::invalid_argument);
+    EXPECT_THROW(scene::bake(scene), std::invalid_argument);
 }
 
 TEST(SceneAnimate, HooksRunWithTheSceneTime) {
-    Scene scene = two_objects();
-    scene.objects[0].animate = [](Object& o, float t) { o.transform.translation.y = t; };
+    scene::Scene scene = two_objects();
+    scene.objects[0].animate = [](scene::Object& o, float t) { o.transform.translation.y = t; };
     scene.animate(2.5f);
     EXPECT_EQ(scene.objects[0].transform.translation.y, 2.5f);
     EXPECT_EQ(scene.objects[1].transform.translation.y, 0.0f);

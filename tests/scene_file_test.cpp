@@ -11,7 +11,7 @@
 #include "raster/scene_file/scene_build.h"
 #include "raster/scene_file/scene_library.h"
 #include "raster/scene_file/scene_parse.h"
-#include "raster/scene_file/snake.h"
+#include "raster/geometry/snake.h"
 
 namespace fs = std::filesystem;
 using namespace tessera;
@@ -32,8 +32,8 @@ const std::string kSphere = R"([{"type": "sphere", "material": "m", "radius": 1}
 std::string parse_error(const std::string& text) {
     std::vector<std::string> warnings;
     try {
-        parse_scene(text, "x.json", warnings);
-    } catch (const SceneFileError& e) {
+        scene_file::parse_scene(text, "x.json", warnings);
+    } catch (const scene_file::SceneFileError& e) {
         return e.what();
     }
     return "";
@@ -42,12 +42,12 @@ std::string parse_error(const std::string& text) {
 }  // namespace
 
 TEST(SceneFile, EveryShippedSceneParsesWithoutWarnings) {
-    const std::vector<std::string> names = available_scenes({kScenes});
+    const std::vector<std::string> names = scene_file::available_scenes({kScenes});
     for (const char* expected : {"snakes", "flag", "toon", "bumpcube", "terrain", "metaballs", "stress"})
         EXPECT_NE(std::find(names.begin(), names.end(), expected), names.end()) << expected;
     for (const std::string& name : names) {
         std::vector<std::string> warnings;
-        const SceneSpec spec = load_scene_file(find_scene(name, {kScenes}), warnings);
+        const scene_file::SceneSpec spec = scene_file::load_scene_file(scene_file::find_scene(name, {kScenes}), warnings);
         EXPECT_TRUE(warnings.empty()) << name << ": " << (warnings.empty() ? "" : warnings.front());
         EXPECT_FALSE(spec.objects.empty() && spec.passes.empty()) << name;
         EXPECT_FALSE(spec.lights.empty()) << name;
@@ -56,16 +56,16 @@ TEST(SceneFile, EveryShippedSceneParsesWithoutWarnings) {
 
 TEST(SceneFile, SnakesSceneHasTheHomeworkIngredients) {
     std::vector<std::string> warnings;
-    const SceneSpec s = load_scene_file(kScenes / "snakes.json", warnings);
+    const scene_file::SceneSpec s = scene_file::load_scene_file(kScenes / "snakes.json", warnings);
     int snakes = 0, grounds = 0;
-    for (const ObjectSpec& o : s.objects) {
-        snakes += o.shape == ObjectSpec::Shape::snake;
-        grounds += o.shape == ObjectSpec::Shape::heightfield;
+    for (const scene_file::ObjectSpec& o : s.objects) {
+        snakes += o.shape == scene_file::ObjectSpec::Shape::snake;
+        grounds += o.shape == scene_file::ObjectSpec::Shape::heightfield;
     }
     EXPECT_GE(snakes, 3);
     EXPECT_EQ(grounds, 1);
     bool rd = false;
-    for (const TextureSpec& t : s.textures) rd |= t.kind == TextureSpec::Kind::reaction_diffusion;
+    for (const scene_file::TextureSpec& t : s.textures) rd |= t.kind == scene_file::TextureSpec::Kind::reaction_diffusion;
     EXPECT_TRUE(rd);
     EXPECT_EQ(s.shadows, "rays");
 }
@@ -110,7 +110,7 @@ TEST(SceneFile, DanglingReferencesAreErrors) {
 
 TEST(SceneFile, UnknownKeysAreWarningsNamingFileAndPath) {
     std::vector<std::string> warnings;
-    parse_scene(scene_with(R"([{"type": "sphere", "material": "m", "radius": 1, "colour": [1, 0, 0]}])",
+    scene_file::parse_scene(scene_with(R"([{"type": "sphere", "material": "m", "radius": 1, "colour": [1, 0, 0]}])",
                            R"("camrea": {}, "lights": [{"direction": [0, 1, 0], "Lx": [1, 1, 1]}], "a/b": 1)"),
                 "x.json", warnings);
     ASSERT_EQ(warnings.size(), 4u);
@@ -125,7 +125,7 @@ TEST(SceneFile, UnknownKeysAreWarningsNamingFileAndPath) {
 
 TEST(SceneFile, ParametersTheModelDoesNotUseAreWarnings) {
     std::vector<std::string> warnings;
-    parse_scene(R"({"materials": {"cel": {"model": "toon", "ks": [1, 1, 1]}},
+    scene_file::parse_scene(R"({"materials": {"cel": {"model": "toon", "ks": [1, 1, 1]}},
                     "objects": [{"type": "sphere", "material": "cel"}]})",
                 "x.json", warnings);
     ASSERT_EQ(warnings.size(), 1u);
@@ -135,9 +135,9 @@ TEST(SceneFile, ParametersTheModelDoesNotUseAreWarnings) {
 TEST(SceneFile, MissingFileAndMalformedJson) {
     std::vector<std::string> warnings;
     try {
-        load_scene_file("/nonexistent/scene.json", warnings);
+        scene_file::load_scene_file("/nonexistent/scene.json", warnings);
         FAIL() << "no error";
-    } catch (const SceneFileError& e) {
+    } catch (const scene_file::SceneFileError& e) {
         EXPECT_EQ(std::string(e.what()), "cannot read scene file '/nonexistent/scene.json': no such file");
     }
     const std::string err = parse_error("{\"objects\": [\n  {\"type\": \"sphere\",, }\n]}");
@@ -147,7 +147,7 @@ TEST(SceneFile, MissingFileAndMalformedJson) {
 
 TEST(SceneFile, UnknownSceneNameListsTheAvailableOnes) {
     try {
-        find_scene("snaeks", {kScenes});
+        scene_file::find_scene("snaeks", {kScenes});
         FAIL() << "no error";
     } catch (const std::invalid_argument& e) {
         const std::string m = e.what();
@@ -155,36 +155,36 @@ TEST(SceneFile, UnknownSceneNameListsTheAvailableOnes) {
         EXPECT_NE(m.find("snakes"), std::string::npos) << m;
         EXPECT_NE(m.find("metaballs"), std::string::npos) << m;
     }
-    EXPECT_EQ(find_scene("my/scene.json", {kScenes}), fs::path("my/scene.json"));
-    EXPECT_EQ(fs::weakly_canonical(find_scene("flag", {kScenes})), fs::weakly_canonical(kScenes / "flag.json"));
+    EXPECT_EQ(scene_file::find_scene("my/scene.json", {kScenes}), fs::path("my/scene.json"));
+    EXPECT_EQ(fs::weakly_canonical(scene_file::find_scene("flag", {kScenes})), fs::weakly_canonical(kScenes / "flag.json"));
 }
 
 TEST(SceneFile, CameraKeyframesInterpolateThroughEveryKey) {
-    CameraSpec spec;
+    render::CameraSpec spec;
     spec.keys = {{0.0f, {0, 1, 5}, {0, 0, 0}, 40}, {1.0f, {2, 1, 3}, {1, 0, 0}, 50}, {3.0f, {4, 2, 0}, {2, 0, -1}, 60}};
-    for (const CameraKey& k : spec.keys) {
-        const Camera c = camera_at(spec, k.time, 1.5f);
+    for (const render::CameraKey& k : spec.keys) {
+        const Camera c = render::camera_at(spec, k.time, 1.5f);
         EXPECT_NEAR(glm::distance(c.eye, k.eye), 0.0f, 1e-5f);
         EXPECT_NEAR(glm::distance(c.lookat, k.lookat), 0.0f, 1e-5f);
         EXPECT_NEAR(c.fovy_deg, k.fovy_deg, 1e-4f);
         EXPECT_EQ(c.aspect, 1.5f);
     }
-    EXPECT_EQ(camera_at(spec, -1.0f, 1.0f).eye, spec.keys.front().eye);  // holds before the first key
-    EXPECT_EQ(camera_at(spec, 9.0f, 1.0f).eye, spec.keys.back().eye);    // and after the last
+    EXPECT_EQ(render::camera_at(spec, -1.0f, 1.0f).eye, spec.keys.front().eye);  // holds before the first key
+    EXPECT_EQ(render::camera_at(spec, 9.0f, 1.0f).eye, spec.keys.back().eye);    // and after the last
     // Continuous: small steps in time give small steps in position.
-    glm::vec3 last = camera_at(spec, 0.0f, 1.0f).eye;
+    glm::vec3 last = render::camera_at(spec, 0.0f, 1.0f).eye;
     for (float t = 0.01f; t <= 3.0f; t += 0.01f) {
-        const glm::vec3 e = camera_at(spec, t, 1.0f).eye;
+        const glm::vec3 e = render::camera_at(spec, t, 1.0f).eye;
         EXPECT_LT(glm::distance(e, last), 0.1f) << t;
         last = e;
     }
 }
 
 TEST(SceneFile, SnakeRestsOnTheGroundAndKeepsItsLength) {
-    SnakeSpec s;
-    const GroundHeight ground = [](float x, float z) { return 0.3f * std::sin(x) + 0.1f * z; };
+    scene_file::SnakeSpec s;
+    const geometry::GroundHeight ground = [](float x, float z) { return 0.3f * std::sin(x) + 0.1f * z; };
     for (float t : {0.0f, 0.7f, 5.3f}) {
-        const std::vector<glm::vec3> spine = snake_spine(s, t, ground);
+        const std::vector<glm::vec3> spine = geometry::snake_spine(s, t, ground);
         ASSERT_EQ(int(spine.size()), s.control_points);
         float arc = 0.0f;
         for (size_t i = 0; i < spine.size(); ++i) {
@@ -197,12 +197,12 @@ TEST(SceneFile, SnakeRestsOnTheGroundAndKeepsItsLength) {
         // The path spacing keeps the body near its length (the sway adds a little).
         EXPECT_GT(arc, 0.8f * s.length);
         EXPECT_LT(arc, 1.5f * s.length);
-        const Mesh body = snake_body(s, spine);
+        const Mesh body = geometry::snake_body(s, spine);
         EXPECT_EQ(body.vertex_count(), size_t(s.tessellation.x + 1) * size_t(s.tessellation.y + 1));
         for (const glm::vec3& n : body.normals) ASSERT_TRUE(std::isfinite(n.x) && std::isfinite(n.y) && std::isfinite(n.z));
     }
     // It moves: the head is elsewhere a second later.
-    EXPECT_GT(glm::distance(snake_spine(s, 0.0f, ground).back(), snake_spine(s, 1.0f, ground).back()), 0.05f);
+    EXPECT_GT(glm::distance(geometry::snake_spine(s, 0.0f, ground).back(), geometry::snake_spine(s, 1.0f, ground).back()), 0.05f);
 }
 
 TEST(SceneFile, MeshObjectsLoadObjFilesRelativeToTheScene) {
@@ -212,13 +212,13 @@ TEST(SceneFile, MeshObjectsLoadObjFilesRelativeToTheScene) {
     std::ofstream(dir / "scene.json") << scene_with(R"([{"type": "mesh", "material": "m", "file": "tri.obj"}])");
     std::ofstream(dir / "broken.json") << scene_with(R"([{"type": "mesh", "material": "m", "file": "nope.obj"}])");
     std::vector<std::string> warnings;
-    const AnimatedScene scene = build_scene(load_scene_file(dir / "scene.json", warnings));
+    const render::AnimatedScene scene = scene_file::build_scene(scene_file::load_scene_file(dir / "scene.json", warnings));
     ASSERT_EQ(scene.scene.objects.size(), 1u);
     EXPECT_EQ(scene.scene.objects[0].geometry->triangle_count(), 1u);
     try {
-        build_scene(load_scene_file(dir / "broken.json", warnings));
+        scene_file::build_scene(scene_file::load_scene_file(dir / "broken.json", warnings));
         ADD_FAILURE() << "no error";
-    } catch (const SceneFileError& e) {
+    } catch (const scene_file::SceneFileError& e) {
         const std::string m = e.what();
         EXPECT_NE(m.find("broken.json: object 'object 0': cannot read"), std::string::npos) << m;
         EXPECT_NE(m.find("nope.obj"), std::string::npos) << m;

@@ -18,7 +18,7 @@ using namespace tessera;
 namespace {
 
 // Angle (radians) between the analytic normal and the cross product of central differences.
-float normal_error(const SurfaceFunction& r, float u, float v) {
+float normal_error(const geometry::SurfaceFunction& r, float u, float v) {
     const float h = 1e-3f;
     const glm::vec3 du = (r(u + h, v).position - r(u - h, v).position) / (2.0f * h);
     const glm::vec3 dv = (r(u, v + h).position - r(u, v - h).position) / (2.0f * h);
@@ -28,7 +28,7 @@ float normal_error(const SurfaceFunction& r, float u, float v) {
 }
 
 // Also checks the analytic partials themselves.
-void expect_surface_consistent(const SurfaceFunction& r, const char* name) {
+void expect_surface_consistent(const geometry::SurfaceFunction& r, const char* name) {
     for (float u : {0.13f, 0.37f, 0.61f, 0.89f})
         for (float v : {0.21f, 0.5f, 0.77f}) {
             EXPECT_LT(normal_error(r, u, v), 2e-3f) << name << " at " << u << ", " << v;
@@ -55,14 +55,14 @@ void expect_winding_follows_normals(const Mesh& m, const char* name) {
 }  // namespace
 
 TEST(SceneGeometry, SurfaceNormalsMatchFiniteDifferences) {
-    expect_surface_consistent(sphere_surface({1, 2, 3}, 1.5f), "sphere");
-    expect_surface_consistent(ellipsoid_surface({0, 0, 0}, {2.0f, 0.5f, 1.0f}), "ellipsoid");
-    expect_surface_consistent(torus_surface(2.0f, 0.5f), "torus");
-    expect_surface_consistent(flag_surface(3.0f, 2.0f, 0.2f, 2.0f, 0.7f), "flag");
+    expect_surface_consistent(geometry::sphere_surface({1, 2, 3}, 1.5f), "sphere");
+    expect_surface_consistent(geometry::ellipsoid_surface({0, 0, 0}, {2.0f, 0.5f, 1.0f}), "ellipsoid");
+    expect_surface_consistent(geometry::torus_surface(2.0f, 0.5f), "torus");
+    expect_surface_consistent(geometry::flag_surface(3.0f, 2.0f, 0.2f, 2.0f, 0.7f), "flag");
 }
 
 TEST(SceneGeometry, SphereNormalIsTheSeedsClosedForm) {
-    const auto r = sphere_surface({0, 0, 0}, 2.0f);
+    const auto r = geometry::sphere_surface({0, 0, 0}, 2.0f);
     const float u = 0.3f, v = 0.4f, pi = glm::pi<float>();
     const glm::vec3 seed(std::cos(2 * pi * u) * std::sin(pi * v), std::sin(2 * pi * u) * std::sin(pi * v),
                          std::cos(pi * v));
@@ -71,25 +71,25 @@ TEST(SceneGeometry, SphereNormalIsTheSeedsClosedForm) {
 }
 
 TEST(SceneGeometry, TessellationCountsUvAndWinding) {
-    const Mesh m = tessellate(sphere_surface({0, 0, 0}, 1.0f), 16, 8);
+    const Mesh m = geometry::tessellate(geometry::sphere_surface({0, 0, 0}, 1.0f), 16, 8);
     EXPECT_EQ(m.vertex_count(), 17u * 9u);
     EXPECT_EQ(m.triangle_count(), 2u * 16u * 8u);
     EXPECT_EQ(m.uvs[9 * 16 + 8], glm::vec2(1.0f, 1.0f));
     for (const glm::vec3& n : m.normals) EXPECT_NEAR(glm::length(n), 1.0f, 1e-5f);
     expect_winding_follows_normals(m, "sphere");
-    expect_winding_follows_normals(tessellate(flag_surface(2, 1, 0.3f, 3, 0), 30, 10), "flag");
-    expect_winding_follows_normals(tessellate(torus_surface(1.0f, 0.3f), 24, 12), "torus");
-    EXPECT_THROW(tessellate(sphere_surface({0, 0, 0}, 1.0f), 0, 4), std::invalid_argument);
+    expect_winding_follows_normals(geometry::tessellate(geometry::flag_surface(2, 1, 0.3f, 3, 0), 30, 10), "flag");
+    expect_winding_follows_normals(geometry::tessellate(geometry::torus_surface(1.0f, 0.3f), 24, 12), "torus");
+    EXPECT_THROW(geometry::tessellate(geometry::sphere_surface({0, 0, 0}, 1.0f), 0, 4), std::invalid_argument);
 }
 
 TEST(SceneGeometry, TessellationIsIndependentOfThreadCount) {
-    const auto surface = torus_surface(1.0f, 0.4f);
+    const auto surface = geometry::torus_surface(1.0f, 0.4f);
     Mesh one;
     {
         tbb::global_control limit(tbb::global_control::max_allowed_parallelism, 1);
-        one = tessellate(surface, 64, 32);
+        one = geometry::tessellate(surface, 64, 32);
     }
-    const Mesh many = tessellate(surface, 64, 32);
+    const Mesh many = geometry::tessellate(surface, 64, 32);
     EXPECT_EQ(one.positions, many.positions);
     EXPECT_EQ(one.normals, many.normals);
     EXPECT_EQ(one.indices, many.indices);
@@ -97,7 +97,7 @@ TEST(SceneGeometry, TessellationIsIndependentOfThreadCount) {
 
 TEST(SceneGeometry, FlatHeightfieldFacesUpAndSlopesTilt) {
     std::vector<float> flat(5 * 4, 0.25f);
-    const Mesh m = tessellate(heightfield_surface(flat, 5, 4, {4.0f, 3.0f}, 2.0f), 4, 3);
+    const Mesh m = geometry::tessellate(geometry::heightfield_surface(flat, 5, 4, {4.0f, 3.0f}, 2.0f), 4, 3);
     ASSERT_EQ(m.vertex_count(), 20u);
     for (size_t i = 0; i < m.vertex_count(); ++i) {
         EXPECT_NEAR(m.positions[i].y, 0.5f, 1e-6f);
@@ -108,9 +108,9 @@ TEST(SceneGeometry, FlatHeightfieldFacesUpAndSlopesTilt) {
     std::vector<float> ramp(5 * 4);
     for (int z = 0; z < 4; ++z)
         for (int x = 0; x < 5; ++x) ramp[size_t(z * 5 + x)] = float(x);
-    const Mesh r = tessellate(heightfield_surface(ramp, 5, 4, {4.0f, 3.0f}, 1.0f), 4, 3);
+    const Mesh r = geometry::tessellate(geometry::heightfield_surface(ramp, 5, 4, {4.0f, 3.0f}, 1.0f), 4, 3);
     EXPECT_LT(glm::length(r.normals[7] - glm::normalize(glm::vec3(-1, 1, 0))), 1e-5f);
-    EXPECT_THROW(heightfield_surface(ramp, 4, 4, {1, 1}, 1), std::invalid_argument);
+    EXPECT_THROW(geometry::heightfield_surface(ramp, 4, 4, {1, 1}, 1), std::invalid_argument);
 }
 
 TEST(SceneGeometry, ExtrudedBodyNormalsMatchTheMeshShape) {
@@ -118,7 +118,7 @@ TEST(SceneGeometry, ExtrudedBodyNormalsMatchTheMeshShape) {
     const std::vector<glm::vec3> spine_points = {{0, 0, 0}, {1, 0.1f, 0.2f}, {2, 0, -0.2f}, {3, 0.1f, 0.15f}, {4, 0, 0}};
     const std::vector<glm::vec2> radii = {{0.1f, 0.15f}, {0.12f, 0.18f}, {0.1f, 0.15f}, {0.05f, 0.08f}, {0.0f, 0.0f}};
     const int along = 400, around = 48;
-    const Mesh m = extrude(catmull_rom<glm::vec3>(spine_points), catmull_rom<glm::vec2>(radii), along, around);
+    const Mesh m = geometry::extrude(geometry::catmull_rom<glm::vec3>(spine_points), geometry::catmull_rom<glm::vec2>(radii), along, around);
     ASSERT_EQ(m.vertex_count(), size_t(along + 1) * size_t(around + 1));
     expect_winding_follows_normals(m, "extrusion");
     // Interior vertices: the analytic normal against the cross product of grid differences.
@@ -134,12 +134,12 @@ TEST(SceneGeometry, ExtrudedBodyNormalsMatchTheMeshShape) {
     // The body passes through the spine points' neighbourhood: ring centres follow the spine.
     glm::vec3 centre(0.0f);
     for (int j = 0; j < around; ++j) centre += at(along / 2, j);
-    EXPECT_LT(glm::length(centre / float(around) - catmull_rom<glm::vec3>(spine_points).position(0.5f)), 0.02f);
+    EXPECT_LT(glm::length(centre / float(around) - geometry::catmull_rom<glm::vec3>(spine_points).position(0.5f)), 0.02f);
 }
 
 TEST(SceneGeometry, CatmullRomPassesThroughItsPointsWithExactDerivatives) {
     const std::vector<glm::vec3> p = {{0, 0, 0}, {1, 2, 0}, {3, 1, 1}, {4, 0, 2}};
-    const auto c = catmull_rom<glm::vec3>(p);
+    const auto c = geometry::catmull_rom<glm::vec3>(p);
     for (size_t k = 0; k < p.size(); ++k) EXPECT_LT(glm::length(c.position(float(k) / 3.0f) - p[k]), 1e-5f);
     const float s = 0.41f, h = 1e-3f;
     EXPECT_LT(glm::length((c.position(s + h) - c.position(s - h)) / (2 * h) - c.derivative(s)), 2e-2f);
@@ -147,7 +147,7 @@ TEST(SceneGeometry, CatmullRomPassesThroughItsPointsWithExactDerivatives) {
 }
 
 TEST(SceneGeometry, BoxFacesPointOutwardWithFullUvSquares) {
-    const Mesh m = box_mesh({1.0f, 2.0f, 0.5f});
+    const Mesh m = geometry::box_mesh({1.0f, 2.0f, 0.5f});
     ASSERT_EQ(m.vertex_count(), 24u);
     ASSERT_EQ(m.triangle_count(), 12u);
     expect_winding_follows_normals(m, "box");
@@ -160,5 +160,5 @@ TEST(SceneGeometry, BoxFacesPointOutwardWithFullUvSquares) {
         // The tangent (+u direction) lies in the face.
         EXPECT_NEAR(glm::dot(glm::vec3(m.tangents[i]), m.normals[i]), 0.0f, 1e-6f);
     }
-    EXPECT_THROW(box_mesh({1, 0, 1}), std::invalid_argument);
+    EXPECT_THROW(geometry::box_mesh({1, 0, 1}), std::invalid_argument);
 }

@@ -2,73 +2,73 @@
 // procedural sky, and the pixel rays FrameShading uses for them.
 #include <gtest/gtest.h>
 
-#include "raster/error.h"
-#include "raster/shade/background.h"
+#include "raster/core/error.h"
+#include "raster/shade/background_radiance.h"
 #include "raster/shade/frame_shading.h"
 
 using namespace tessera;
 
 namespace {
 
-std::shared_ptr<const Texture> solid(glm::vec3 c) {
-    return std::make_shared<const Texture>(1, 1, std::vector<glm::vec4>{glm::vec4(c, 1.0f)});
+std::shared_ptr<const texture::Texture> solid(glm::vec3 c) {
+    return std::make_shared<const texture::Texture>(1, 1, std::vector<glm::vec4>{glm::vec4(c, 1.0f)});
 }
 
 }  // namespace
 
 TEST(ShadingBackground, CubeMapSelectsTheMajorAxisFace) {
-    Background b;
-    b.kind = Background::Kind::cube_map;
+    scene::Background b;
+    b.kind = scene::Background::Kind::cube_map;
     const glm::vec3 colours[6] = {{1, 0, 0}, {0, 1, 0}, {0, 0, 1}, {1, 1, 0}, {0, 1, 1}, {1, 0, 1}};
     for (int i = 0; i < 6; ++i) b.cube.faces[size_t(i)] = solid(colours[i]);
     const glm::vec3 directions[6] = {{2, 0.5f, -1}, {-2, 1, 1}, {0.3f, 5, 0}, {0, -1, 0.2f}, {0.1f, 0.1f, 3}, {0, 0.4f, -1}};
-    for (int i = 0; i < 6; ++i) EXPECT_EQ(background_radiance(b, directions[i]), colours[i]) << "face " << i;
+    for (int i = 0; i < 6; ++i) EXPECT_EQ(shade::background_radiance(b, directions[i]), colours[i]) << "face " << i;
 }
 
 TEST(ShadingBackground, CubeMapFaceOrientationFollowsOpenGL) {
     // A 2 x 2 +z face given as an image file would be (top row first): red green / blue white.
-    FloatImage image;
+    io::FloatImage image;
     image.width = image.height = 2;
     image.channels = 3;
     image.pixels = {1, 0, 0, 0, 1, 0, 0, 0, 1, 1, 1, 1};
-    Background b;
-    b.kind = Background::Kind::cube_map;
-    for (auto& face : b.cube.faces) face = std::make_shared<const Texture>(Texture::from_image(image, TexelEncoding::linear));
+    scene::Background b;
+    b.kind = scene::Background::Kind::cube_map;
+    for (auto& face : b.cube.faces) face = std::make_shared<const texture::Texture>(texture::Texture::from_image(image, texture::TexelEncoding::linear));
     // +z: s = (x/|z| + 1)/2, t = (-y/|z| + 1)/2, t = 0 at the image's top row, so direction
     // (-x, +y) reads (s, t) = (0.25, 0.25), the image's top-left texel. (OpenGL cube maps are
     // left-handed: skybox images are authored for this table.)
-    EXPECT_EQ(background_radiance(b, {-0.5f, 0.5f, 1.0f}), glm::vec3(1, 0, 0));
-    EXPECT_EQ(background_radiance(b, {0.5f, 0.5f, 1.0f}), glm::vec3(0, 1, 0));
-    EXPECT_EQ(background_radiance(b, {-0.5f, -0.5f, 1.0f}), glm::vec3(0, 0, 1));
-    EXPECT_EQ(background_radiance(b, {0.5f, -0.5f, 1.0f}), glm::vec3(1, 1, 1));
+    EXPECT_EQ(shade::background_radiance(b, {-0.5f, 0.5f, 1.0f}), glm::vec3(1, 0, 0));
+    EXPECT_EQ(shade::background_radiance(b, {0.5f, 0.5f, 1.0f}), glm::vec3(0, 1, 0));
+    EXPECT_EQ(shade::background_radiance(b, {-0.5f, -0.5f, 1.0f}), glm::vec3(0, 0, 1));
+    EXPECT_EQ(shade::background_radiance(b, {0.5f, -0.5f, 1.0f}), glm::vec3(1, 1, 1));
 }
 
 TEST(ShadingBackground, MissingCubeFacesAreClearErrors) {
-    EXPECT_THROW(load_cube_map("/nonexistent/sky_{face}.png"), Error);
-    EXPECT_THROW(load_cube_map("/nonexistent/sky.png"), std::invalid_argument);
+    EXPECT_THROW(scene::load_cube_map("/nonexistent/sky_{face}.png"), Error);
+    EXPECT_THROW(scene::load_cube_map("/nonexistent/sky.png"), std::invalid_argument);
 }
 
 TEST(ShadingBackground, SkyIsBrighterUpThanDownAndShowsTheSun) {
-    Background b;
-    b.kind = Background::Kind::sky;
-    const glm::vec3 up = background_radiance(b, {0, 1, 0}), down = background_radiance(b, {0, -1, 0});
+    scene::Background b;
+    b.kind = scene::Background::Kind::sky;
+    const glm::vec3 up = shade::background_radiance(b, {0, 1, 0}), down = shade::background_radiance(b, {0, -1, 0});
     EXPECT_GT(up.b, down.b);
-    EXPECT_EQ(background_radiance(b, b.sky.sun_direction), b.sky.sun);
-    EXPECT_TRUE(std::isfinite(background_radiance(b, {0, 0, 0}).r));  // zero direction: no NaN
+    EXPECT_EQ(shade::background_radiance(b, b.sky.sun_direction), b.sky.sun);
+    EXPECT_TRUE(std::isfinite(shade::background_radiance(b, {0, 0, 0}).r));  // zero direction: no NaN
 }
 
 TEST(ShadingBackground, PixelRaysLookThroughTheCamera) {
     // A scene with no objects: the centre pixel sees along the view direction, the top row up.
-    Scene scene;
+    scene::Scene scene;
     scene.camera.eye = {0, 0, 0};
     scene.camera.lookat = {0, 0, -1};
     scene.camera.aspect = 1.0f;
-    scene.background.kind = Background::Kind::cube_map;
+    scene.background.kind = scene::Background::Kind::cube_map;
     const glm::vec3 colours[6] = {{1, 0, 0}, {0, 1, 0}, {0, 0, 1}, {1, 1, 0}, {0, 1, 1}, {1, 0, 1}};
     for (int i = 0; i < 6; ++i) scene.background.cube.faces[size_t(i)] = solid(colours[i]);
     scene.camera.fovy_deg = 120.0f;
-    const BakedScene baked = bake(scene);
-    const FrameShading shading(baked, scene, RenderState{scene.camera, 33, 33, {}});
+    const scene::BakedScene baked = scene::bake(scene);
+    const shade::FrameShading shading(baked, scene, shade::RenderState{scene.camera, 33, 33, {}});
     EXPECT_EQ(glm::vec3(shading.background(16, 16)), colours[5]);  // -z
     EXPECT_EQ(glm::vec3(shading.background(16, 0)), colours[2]);   // +y (top row, fov 120)
     EXPECT_EQ(glm::vec3(shading.background(32, 16)), colours[0]);  // +x

@@ -14,33 +14,33 @@ namespace {
 
 constexpr int kSize = 128;
 
-void expect_golden(const Scene& scene, const std::string& name) {
+void expect_golden(const scene::Scene& scene, const std::string& name) {
     std::string why;
-    EXPECT_TRUE(test::matches_golden(test::render(scene, kSize, kSize), name, why)) << why;
+    EXPECT_TRUE(test::matches_golden(test::render_scene(scene, kSize, kSize), name, why)) << why;
 }
 
 }  // namespace
 
-TEST(ShadingGolden, Flat) { expect_golden(base_scene(coloured(ShadingModel::flat)), "flat"); }
-TEST(ShadingGolden, Gouraud) { expect_golden(base_scene(coloured(ShadingModel::gouraud)), "gouraud"); }
-TEST(ShadingGolden, Phong) { expect_golden(base_scene(coloured(ShadingModel::phong)), "phong"); }
-TEST(ShadingGolden, Toon) { expect_golden(base_scene(coloured(ShadingModel::toon)), "toon"); }
+TEST(ShadingGolden, Flat) { expect_golden(base_scene(coloured(scene::ShadingModel::flat)), "flat"); }
+TEST(ShadingGolden, Gouraud) { expect_golden(base_scene(coloured(scene::ShadingModel::gouraud)), "gouraud"); }
+TEST(ShadingGolden, Phong) { expect_golden(base_scene(coloured(scene::ShadingModel::phong)), "phong"); }
+TEST(ShadingGolden, Toon) { expect_golden(base_scene(coloured(scene::ShadingModel::toon)), "toon"); }
 
 TEST(ShadingGolden, TexturedDiffuse) {
-    Material m = coloured(ShadingModel::phong);
+    scene::Material m = coloured(scene::ShadingModel::phong);
     m.ka = m.kd = glm::vec3(1.0f);
     m.ks = glm::vec3(0.3f);
     m.diffuse_texture = 0;
-    Scene s = base_scene(m);
+    scene::Scene s = base_scene(m);
     s.textures.push_back(checker_texture());
     expect_golden(s, "textured");
 }
 
 TEST(ShadingGolden, NormalMapped) {
-    Material m = coloured(ShadingModel::phong);
+    scene::Material m = coloured(scene::ShadingModel::phong);
     m.kd = m.ka = glm::vec3(0.7f);
     m.normal_texture = 0;
-    Scene s = base_scene(m);
+    scene::Scene s = base_scene(m);
     s.textures.push_back(bump_map());
     expect_golden(s, "normalmap");
 }
@@ -48,8 +48,8 @@ TEST(ShadingGolden, NormalMapped) {
 TEST(ShadingGolden, TransparentOverOpaque) { expect_golden(transparent_scene(), "transparent"); }
 
 TEST(ShadingGolden, SkyBackground) {
-    Scene s = base_scene(coloured(ShadingModel::phong));
-    s.background.kind = Background::Kind::sky;
+    scene::Scene s = base_scene(coloured(scene::ShadingModel::phong));
+    s.background.kind = scene::Background::Kind::sky;
     s.camera.eye = {0.0f, 0.3f, 3.2f};
     s.camera.lookat = {0.0f, 0.6f, 0.0f};
     expect_golden(s, "sky");

@@ -12,8 +12,8 @@
 #include <string>
 #include <vector>
 
-#include "raster/image_io.h"
-#include "raster/output/frame.h"
+#include "raster/io/image_io.h"
+#include "raster/output/frame_encoding.h"
 #include "raster/render/frame_renderer.h"
 #include "raster/scene/scene.h"
 #include "raster/scene_file/scene_build.h"
@@ -47,7 +47,7 @@ inline float intersect(glm::vec3 origin, glm::vec3 dir, glm::vec3 a, glm::vec3 b
 }
 
 // Nearest opaque triangle per pixel (depth left at 1: shading does not read it).
-inline VisibilityBuffer cast_visibility(const BakedScene& baked, const Scene& scene, int width, int height,
+inline VisibilityBuffer cast_visibility(const scene::BakedScene& baked, const scene::Scene& scene, int width, int height,
                                         std::vector<float>* nearest = nullptr) {
     VisibilityBuffer vis;
     vis.reset(width, height);
@@ -73,14 +73,14 @@ inline VisibilityBuffer cast_visibility(const BakedScene& baked, const Scene& sc
 
 // The full test pipeline: bake, cast, shade the opaque pass, then blend the transparent
 // triangles' covered pixels in submission (triangle id) order.
-inline Frame render(const Scene& scene, int width, int height) {
-    const BakedScene baked = bake(scene);
+inline Frame render_scene(const scene::Scene& scene, int width, int height) {
+    const scene::BakedScene baked = scene::bake(scene);
     std::vector<float> nearest;
     const VisibilityBuffer vis = cast_visibility(baked, scene, width, height, &nearest);
-    RenderState state{scene.camera, width, height, scene.lights};
-    const FrameShading shading(baked, scene, state);
-    Frame frame = shade_visibility(shading, vis);
-    std::vector<CoveredPixel> transparent;
+    shade::RenderState state{scene.camera, width, height, scene.lights};
+    const shade::FrameShading shading(baked, scene, state);
+    Frame frame = shade::shade_visibility(shading, vis);
+    std::vector<shade::CoveredPixel> transparent;
     const Mesh& m = baked.mesh;
     for (size_t t = 0; t < m.triangle_count(); ++t) {
         if (!scene.materials[baked.triangle_material[t]].transparent()) continue;
@@ -93,20 +93,20 @@ inline Frame render(const Scene& scene, int width, int height) {
                     transparent.push_back({x, y, uint32_t(t)});
             }
     }
-    TileTarget whole;
+    shade::TileTarget whole;
     whole.width = width;
     whole.height = height;
     whole.colour = frame.pixels.data();
     whole.colour_stride = size_t(width);
-    blend_fragments(shading, transparent, whole);
+    shade::blend_fragments(shading, transparent, whole);
     return frame;
 }
 
 // The scene through the frame path the `tessera render` command uses: tile rasterizer,
 // shading, transparent triangles blended per tile; time 0, no shadows.
-inline Frame rasterize(const Scene& scene, int width, int height) {
-    AnimatedScene still = still_scene(scene);
-    FrameRenderer renderer(still, width, height, RendererKind::raster, ShadowMode::none);
+inline Frame rasterize(const scene::Scene& scene, int width, int height) {
+    render::AnimatedScene still = render::still_scene(scene);
+    render::FrameRenderer renderer(still, width, height, render::RendererKind::raster, render::ShadowMode::none);
     return renderer.render(0.0f);
 }
 
@@ -139,17 +139,17 @@ inline std::filesystem::path golden_path(const std::string& name) {
 // x8) are written to the temporary directory and named in `why`.
 inline bool matches_golden(const Frame& frame, const std::string& name, std::string& why,
                            int tolerance = 3, double max_bad_fraction = 0.002) {
-    const std::vector<uint8_t> actual = encode_srgb8(frame);
-    const ImageView view{frame.width, frame.height, 4, PixelType::u8, actual.data()};
+    const std::vector<uint8_t> actual = output::encode_srgb8(frame);
+    const io::ImageView view{frame.width, frame.height, 4, io::PixelType::u8, actual.data()};
     if (const char* update = std::getenv("TESSERA_UPDATE_GOLDEN"); update && std::string(update) == "1") {
-        write_image(golden_path(name), view);
+        io::write_image(golden_path(name), view);
         return true;
     }
     if (!std::filesystem::exists(golden_path(name))) {
         why = "golden " + golden_path(name).string() + " is missing (TESSERA_UPDATE_GOLDEN=1 creates it)";
         return false;
     }
-    const FloatImage golden = read_image(golden_path(name));
+    const io::FloatImage golden = io::read_image(golden_path(name));
     if (golden.width != frame.width || golden.height != frame.height || golden.channels != 4) {
         why = "golden " + name + " has a different size or channel count";
         return false;
@@ -161,8 +161,8 @@ inline bool matches_golden(const Frame& frame, const std::string& name, std::str
     if (double(bad) <= max_bad_fraction * double(actual.size() / 4)) return true;
     const auto dir = std::filesystem::temp_directory_path() / "tessera_golden_failures";
     std::filesystem::create_directories(dir);
-    write_image(dir / (name + "_actual.png"), view);
-    write_image(dir / (name + "_diff.png"), {frame.width, frame.height, 4, PixelType::u8, diff.data()});
+    io::write_image(dir / (name + "_actual.png"), view);
+    io::write_image(dir / (name + "_diff.png"), {frame.width, frame.height, 4, io::PixelType::u8, diff.data()});
     why = std::to_string(bad) + " pixels differ from golden " + name + "; see " + (dir / (name + "_diff.png")).string();
     return false;
 }

@@ -15,28 +15,28 @@ using namespace tessera;
 
 namespace {
 
-using V = shade::V3<float>;
+using V = simd::V3<float>;
 V v3(glm::vec3 a) { return {a.x, a.y, a.z}; }
 glm::vec3 g3(V a) { return {a.x, a.y, a.z}; }
 
 // A quad in the z = 0 plane, corners (-1,-1) .. (1,1), uv (0,0) .. (1,1), facing +z; two
 // triangles, so its interior has no vertex.
 std::shared_ptr<const Mesh> quad(int n = 1) {
-    return std::make_shared<const Mesh>(tessellate(
+    return std::make_shared<const Mesh>(geometry::tessellate(
         [](float u, float v) {
-            return SurfacePoint{{2 * u - 1, 2 * v - 1, 0}, {2, 0, 0}, {0, 2, 0}, {0, 0, 1}};
+            return geometry::SurfacePoint{{2 * u - 1, 2 * v - 1, 0}, {2, 0, 0}, {0, 2, 0}, {0, 0, 1}};
         },
         n, n));
 }
 
-Scene one_object(std::shared_ptr<const Mesh> mesh, Material material) {
-    Scene s;
+scene::Scene one_object(std::shared_ptr<const Mesh> mesh, scene::Material material) {
+    scene::Scene s;
     s.camera.eye = {0, 0, 3};
     s.camera.aspect = 1.0f;
     s.camera.fovy_deg = 60.0f;
     s.materials = {material};
-    s.objects = {Object{"object", std::move(mesh), 0, {}, {}}};
-    s.lights = {point_light({0, 0, 1.0f}, glm::vec3(0.0f), glm::vec3(1.0f))};
+    s.objects = {scene::Object{"object", std::move(mesh), 0, {}, {}}};
+    s.lights = {scene::point_light({0, 0, 1.0f}, glm::vec3(0.0f), glm::vec3(1.0f))};
     return s;
 }
 
@@ -84,15 +84,15 @@ TEST(ShadingTangentFrame, SeedFormulaAgainstHandComputedFrames) {
 }
 
 TEST(ShadingModels, PhongShowsAHighlightInsideALargeTriangleThatGouraudMisses) {
-    Material m;
+    scene::Material m;
     m.ka = glm::vec3(0.0f);
     m.kd = glm::vec3(0.2f);
     m.ks = glm::vec3(0.8f);
     m.shine = 64.0f;
-    m.model = ShadingModel::phong;
-    const Frame phong = test::render(one_object(quad(), m), 64, 64);
-    m.model = ShadingModel::gouraud;
-    const Frame gouraud = test::render(one_object(quad(), m), 64, 64);
+    m.model = scene::ShadingModel::phong;
+    const Frame phong = test::render_scene(one_object(quad(), m), 64, 64);
+    m.model = scene::ShadingModel::gouraud;
+    const Frame gouraud = test::render_scene(one_object(quad(), m), 64, 64);
     // The light hovers over the centre: the highlight is there, far from every vertex.
     EXPECT_GT(phong.at(32, 32).r, 0.9f);
     EXPECT_LT(gouraud.at(32, 32).r, 0.3f);
@@ -102,12 +102,12 @@ TEST(ShadingModels, PhongShowsAHighlightInsideALargeTriangleThatGouraudMisses) {
 }
 
 TEST(ShadingModels, ToonHasTwoLevelsAndABlackSilhouette) {
-    Material m;
-    m.model = ShadingModel::toon;
+    scene::Material m;
+    m.model = scene::ShadingModel::toon;
     m.kd = glm::vec3(0.8f, 0.4f, 0.2f);
-    Scene scene = one_object(std::make_shared<const Mesh>(tessellate(sphere_surface({0, 0, 0}, 1.0f), 48, 24)), m);
-    scene.lights = {directional_light({1, 1, 1}, glm::vec3(0.0f), glm::vec3(1.0f))};
-    const Frame f = test::render(scene, 64, 64);
+    scene::Scene scene = one_object(std::make_shared<const Mesh>(geometry::tessellate(geometry::sphere_surface({0, 0, 0}, 1.0f), 48, 24)), m);
+    scene.lights = {scene::directional_light({1, 1, 1}, glm::vec3(0.0f), glm::vec3(1.0f))};
+    const Frame f = test::render_scene(scene, 64, 64);
     int full = 0, half = 0, black = 0, other = 0;
     for (int y = 8; y < 56; ++y)
         for (int x = 8; x < 56; ++x) {
@@ -123,7 +123,7 @@ TEST(ShadingModels, ToonHasTwoLevelsAndABlackSilhouette) {
     // On the sphere's rim |N.V| is small: against a white background, the outermost covered
     // pixels of the middle row are black.
     scene.background.colour = glm::vec3(1.0f);
-    const Frame g = test::render(scene, 64, 64);
+    const Frame g = test::render_scene(scene, 64, 64);
     int x = 0;
     while (x < 64 && g.at(x, 32).r == 1.0f) ++x;
     ASSERT_LT(x, 32);
@@ -141,26 +141,26 @@ TEST(ShadingTextures, PerspectiveCorrectCheckerboardOnATiltedPlane) {
     std::vector<glm::vec4> texels(64 * 64);
     for (int y = 0; y < 64; ++y)
         for (int x = 0; x < 64; ++x) texels[size_t(y * 64 + x)] = glm::vec4(glm::vec3(float(((x / 8) + (y / 8)) & 1)), 1.0f);
-    Material m;
+    scene::Material m;
     m.ka = glm::vec3(0.0f);
     m.kd = glm::vec3(1.0f);
     m.ks = glm::vec3(0.0f);
     m.diffuse_texture = 0;
-    m.filter = TextureFilter::nearest;
-    Scene scene = one_object(quad(), m);
+    m.filter = texture::TextureFilter::nearest;
+    scene::Scene scene = one_object(quad(), m);
     scene.textures.emplace_back(64, 64, texels);
     const float angle = -glm::radians(60.0f);
     scene.objects[0].transform.axis = {1, 0, 0};
     scene.objects[0].transform.angle = angle;
     scene.objects[0].transform.scale = glm::vec3(1.5f);
     const glm::vec3 normal(0, std::sin(-angle), std::cos(angle));
-    scene.lights = {directional_light(normal, glm::vec3(0.0f), glm::vec3(1.0f))};
-    const Frame f = test::render(scene, size, size);
+    scene.lights = {scene::directional_light(normal, glm::vec3(0.0f), glm::vec3(1.0f))};
+    const Frame f = test::render_scene(scene, size, size);
 
     // The analytic answer: intersect each pixel ray with the plane, read the checker there.
     const glm::mat4 inverse = scene.objects[0].transform.inverse();
     int covered = 0, wrong = 0, wrong_affine = 0;
-    const BakedScene baked = bake(scene);
+    const scene::BakedScene baked = scene::bake(scene);
     const VisibilityBuffer vis = test::cast_visibility(baked, scene, size, size);
     const glm::mat4 vp = scene.camera.view_projection();
     for (int y = 0; y < size; ++y)
@@ -203,24 +203,24 @@ TEST(ShadingTextures, KernelDerivativesSelectTheMipLevel) {
     std::vector<glm::vec4> texels(256 * 256);
     for (int y = 0; y < 256; ++y)
         for (int x = 0; x < 256; ++x) texels[size_t(y * 256 + x)] = glm::vec4(glm::vec3(float((x + y) & 1)), 1.0f);
-    Material m;
+    scene::Material m;
     m.ka = glm::vec3(0.0f);
     m.kd = glm::vec3(1.0f);
     m.ks = glm::vec3(0.0f);
     m.diffuse_texture = 0;
-    Scene scene = one_object(quad(), m);
+    scene::Scene scene = one_object(quad(), m);
     scene.camera.eye = {0, 0, 2};
     scene.camera.fovy_deg = 90.0f;
     scene.textures.emplace_back(256, 256, texels);
-    scene.lights = {directional_light({0, 0, 1}, glm::vec3(0.0f), glm::vec3(1.0f))};
-    for (TextureFilter filter : {TextureFilter::trilinear, TextureFilter::mipmap}) {
+    scene.lights = {scene::directional_light({0, 0, 1}, glm::vec3(0.0f), glm::vec3(1.0f))};
+    for (texture::TextureFilter filter : {texture::TextureFilter::trilinear, texture::TextureFilter::mipmap}) {
         scene.materials[0].filter = filter;
-        const Frame f = test::render(scene, 128, 128);
+        const Frame f = test::render_scene(scene, 128, 128);
         for (int y = 40; y < 88; y += 5)
             for (int x = 40; x < 88; x += 5) EXPECT_NEAR(f.at(x, y).r, 0.5f, 0.02f) << x << "," << y;
     }
-    scene.materials[0].filter = TextureFilter::nearest;
-    const Frame aliased = test::render(scene, 128, 128);
+    scene.materials[0].filter = texture::TextureFilter::nearest;
+    const Frame aliased = test::render_scene(scene, 128, 128);
     int extreme = 0;
     for (int y = 40; y < 88; ++y)
         for (int x = 40; x < 88; ++x) extreme += aliased.at(x, y).r < 0.01f || aliased.at(x, y).r > 0.99f;
@@ -231,27 +231,27 @@ TEST(ShadingTransparency, BlendingFollowsSubmissionOrder) {
     // Two overlapping transparent quads in front of nothing (black background): red then blue.
     // (Pixels are read off the quads' diagonal, where the brute-force harness hits both
     // triangles; the rasterizer's fill rule gives the edge to one.)
-    Material red, blue;
-    red.model = blue.model = ShadingModel::flat;
+    scene::Material red, blue;
+    red.model = blue.model = scene::ShadingModel::flat;
     red.ka = blue.ka = glm::vec3(0.0f);
     red.ks = blue.ks = glm::vec3(0.0f);
     red.kd = {1, 0, 0};
     blue.kd = {0, 0, 1};
     red.opacity = blue.opacity = 0.5f;
-    Scene scene = one_object(quad(), red);
+    scene::Scene scene = one_object(quad(), red);
     scene.materials.push_back(blue);
-    scene.objects.push_back(Object{"blue", quad(), 1, {}, {}});
+    scene.objects.push_back(scene::Object{"blue", quad(), 1, {}, {}});
     scene.objects[1].transform.translation = {0, 0, 0.5f};  // nearer, but drawn second
-    scene.lights = {directional_light({0, 0, 1}, glm::vec3(0.0f), glm::vec3(1.0f))};
-    const Frame f = test::render(scene, 32, 32);
+    scene.lights = {scene::directional_light({0, 0, 1}, glm::vec3(0.0f), glm::vec3(1.0f))};
+    const Frame f = test::render_scene(scene, 32, 32);
     // c = c_src a + c_dst (1 - a): red over black, then blue over that.
-    const glm::vec4 expected = blend_over(blend_over({0, 0, 0, 1}, {1, 0, 0, 0.5f}), {0, 0, 1, 0.5f});
+    const glm::vec4 expected = shade::blend_over(shade::blend_over({0, 0, 0, 1}, {1, 0, 0, 0.5f}), {0, 0, 1, 0.5f});
     EXPECT_LT(glm::length(f.at(12, 14) - expected), 1e-5f);
     EXPECT_NEAR(f.at(12, 14).r, 0.25f, 1e-6f);
     EXPECT_NEAR(f.at(12, 14).b, 0.5f, 1e-6f);
     // Swapping the submission order swaps the weights: order matters, as the seed warns.
     std::swap(scene.objects[0], scene.objects[1]);
-    const Frame g = test::render(scene, 32, 32);
+    const Frame g = test::render_scene(scene, 32, 32);
     EXPECT_NEAR(g.at(12, 14).r, 0.5f, 1e-6f);
     EXPECT_NEAR(g.at(12, 14).b, 0.25f, 1e-6f);
 }
@@ -261,57 +261,57 @@ TEST(ShadingNormalMaps, FlatMapKeepsTheGeometricNormal) {
     // (128, 128, 255) in 8 bits) must not change the shading.
     const procedural::NormalMap flat = procedural::normal_map(procedural::Grid(16, 8, 0.3f), 8.0f,
                                                               procedural::Boundary::periodic);
-    FloatImage encoded;
+    io::FloatImage encoded;
     encoded.width = flat.width;
     encoded.height = flat.height;
     encoded.channels = 3;
     for (float c : flat.xyz) encoded.pixels.push_back(c * 0.5f + 0.5f);
-    Material m;
+    scene::Material m;
     m.kd = {0.7f, 0.5f, 0.3f};
-    Scene plain = one_object(std::make_shared<const Mesh>(tessellate(sphere_surface({0, 0, 0}, 1.0f), 32, 16)), m);
-    plain.lights = {point_light({2, 2, 3}, glm::vec3(0.1f), glm::vec3(1.0f))};
-    Scene mapped = plain;
-    mapped.textures.push_back(Texture::from_image(encoded, TexelEncoding::linear));
+    scene::Scene plain = one_object(std::make_shared<const Mesh>(geometry::tessellate(geometry::sphere_surface({0, 0, 0}, 1.0f), 32, 16)), m);
+    plain.lights = {scene::point_light({2, 2, 3}, glm::vec3(0.1f), glm::vec3(1.0f))};
+    scene::Scene mapped = plain;
+    mapped.textures.push_back(texture::Texture::from_image(encoded, texture::TexelEncoding::linear));
     mapped.materials[0].normal_texture = 0;
-    const Frame a = test::render(plain, 64, 64), b = test::render(mapped, 64, 64);
+    const Frame a = test::render_scene(plain, 64, 64), b = test::render_scene(mapped, 64, 64);
     float worst = 0.0f;
     for (size_t i = 0; i < a.pixels.size(); ++i) worst = std::max(worst, glm::length(a.pixels[i] - b.pixels[i]));
     EXPECT_LT(worst, 1e-4f);
     // And a tilted map does change it (the test can fail).
-    mapped.textures[0] = Texture(1, 1, {glm::vec4(0.9f, 0.5f, 0.8f, 1.0f)});
-    const Frame c = test::render(mapped, 64, 64);
+    mapped.textures[0] = texture::Texture(1, 1, {glm::vec4(0.9f, 0.5f, 0.8f, 1.0f)});
+    const Frame c = test::render_scene(mapped, 64, 64);
     EXPECT_GT(glm::length(c.at(32, 32) - a.at(32, 32)), 0.02f);
 }
 
 TEST(ShadingKernel, SimdMatchesTheScalarReference) {
     // Every model, textured and normal-mapped, several lights: all visible pixels both ways.
-    Scene scene;
+    scene::Scene scene;
     scene.camera.eye = {0, 0.5f, 4};
     scene.camera.aspect = 1.0f;
     std::vector<glm::vec4> texels(32 * 16);
     for (size_t i = 0; i < texels.size(); ++i) texels[i] = glm::vec4(float(i % 7) / 7, float(i % 5) / 5, 0.5f, 1);
     scene.textures.emplace_back(32, 16, texels);
     scene.textures.emplace_back(8, 8, std::vector<glm::vec4>(64, glm::vec4(0.6f, 0.4f, 0.9f, 1.0f)));
-    for (ShadingModel model : {ShadingModel::flat, ShadingModel::gouraud, ShadingModel::phong, ShadingModel::toon}) {
-        Material m;
+    for (scene::ShadingModel model : {scene::ShadingModel::flat, scene::ShadingModel::gouraud, scene::ShadingModel::phong, scene::ShadingModel::toon}) {
+        scene::Material m;
         m.model = model;
         scene.materials.push_back(m);
         m.diffuse_texture = 0;
         m.normal_texture = 1;
         scene.materials.push_back(m);
     }
-    const auto sphere = std::make_shared<const Mesh>(tessellate(sphere_surface({0, 0, 0}, 0.5f), 24, 12));
+    const auto sphere = std::make_shared<const Mesh>(geometry::tessellate(geometry::sphere_surface({0, 0, 0}, 0.5f), 24, 12));
     for (uint32_t i = 0; i < scene.materials.size(); ++i) {
-        Object o{"s", sphere, i, {}, {}};
+        scene::Object o{"s", sphere, i, {}, {}};
         o.transform.translation = {float(i % 4) - 1.5f, float(i / 4) - 0.5f, 0.0f};
         scene.objects.push_back(o);
     }
-    scene.lights = {point_light({2, 2, 3}, glm::vec3(0.1f), glm::vec3(0.8f)),
-                    directional_light({-1, 0.5f, 1}, glm::vec3(0.05f), glm::vec3(0.5f, 0.5f, 0.6f))};
-    const BakedScene baked = bake(scene);
+    scene.lights = {scene::point_light({2, 2, 3}, glm::vec3(0.1f), glm::vec3(0.8f)),
+                    scene::directional_light({-1, 0.5f, 1}, glm::vec3(0.05f), glm::vec3(0.5f, 0.5f, 0.6f))};
+    const scene::BakedScene baked = scene::bake(scene);
     const VisibilityBuffer vis = test::cast_visibility(baked, scene, 96, 96);
-    const FrameShading shading(baked, scene, RenderState{scene.camera, 96, 96, scene.lights});
-    std::vector<CoveredPixel> pixels;
+    const shade::FrameShading shading(baked, scene, shade::RenderState{scene.camera, 96, 96, scene.lights});
+    std::vector<shade::CoveredPixel> pixels;
     for (int y = 0; y < 96; ++y)
         for (int x = 0; x < 96; ++x)
             if (vis.triangle[size_t(y * 96 + x)] != kNoTriangle) pixels.push_back({x, y, vis.triangle[size_t(y * 96 + x)]});
@@ -336,14 +336,14 @@ TEST(ShadingKernel, DegenerateInputsGiveFiniteColours) {
     mesh->tangents.push_back(glm::vec4(1, 0, 0, 1));
     const uint32_t p = uint32_t(mesh->positions.size() - 1);
     mesh->indices.insert(mesh->indices.end(), {p, p, p});
-    Material m;
+    scene::Material m;
     m.diffuse_texture = 0;
     m.normal_texture = 0;
-    Scene scene = one_object(mesh, m);
+    scene::Scene scene = one_object(mesh, m);
     scene.textures.emplace_back(1, 1, std::vector<glm::vec4>{glm::vec4(0.5f, 0.5f, 1.0f, 1.0f)});
-    const BakedScene baked = bake(scene);
-    const FrameShading shading(baked, scene, RenderState{scene.camera, 32, 32, scene.lights});
-    std::vector<CoveredPixel> pixels;
+    const scene::BakedScene baked = scene::bake(scene);
+    const shade::FrameShading shading(baked, scene, shade::RenderState{scene.camera, 32, 32, scene.lights});
+    std::vector<shade::CoveredPixel> pixels;
     for (uint32_t t = 0; t < 4; ++t)
         for (int x = 0; x < 32; x += 3) pixels.push_back({x, 16, t == 3 ? 12345u : t});
     std::vector<glm::vec4> out(pixels.size()), ref(pixels.size());

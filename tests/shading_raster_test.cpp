@@ -17,30 +17,30 @@ namespace {
 
 // Fraction of pixels whose colour differs by more than 3/255 in some channel (sRGB).
 double differing(const Frame& a, const Frame& b) {
-    return double(count_differing(encode_srgb8(a), encode_srgb8(b), 3)) / double(a.pixels.size());
+    return double(count_differing(output::encode_srgb8(a), output::encode_srgb8(b), 3)) / double(a.pixels.size());
 }
 
 }  // namespace
 
 TEST(ShadingRaster, RasterizedFramesMatchTheBruteForceShading) {
-    for (ShadingModel model : {ShadingModel::flat, ShadingModel::gouraud, ShadingModel::phong, ShadingModel::toon}) {
-        const Scene scene = base_scene(coloured(model));
+    for (scene::ShadingModel model : {scene::ShadingModel::flat, scene::ShadingModel::gouraud, scene::ShadingModel::phong, scene::ShadingModel::toon}) {
+        const scene::Scene scene = base_scene(coloured(model));
         // Only silhouette pixels may differ (the fill rule vs the ray test at exact edges).
-        EXPECT_LT(differing(rasterize(scene, 128, 128), render(scene, 128, 128)), 0.01) << to_string(model);
+        EXPECT_LT(differing(rasterize(scene, 128, 128), render_scene(scene, 128, 128)), 0.01) << to_string(model);
     }
 }
 
 TEST(ShadingRaster, TransparencyThroughTheTilePassMatches) {
-    const Scene scene = transparent_scene();
+    const scene::Scene scene = transparent_scene();
     // The brute-force harness blends both triangles on a shared edge; the rasterizer's fill
     // rule gives each edge pixel to one, so a few more pixels differ here.
-    EXPECT_LT(differing(rasterize(scene, 128, 128), render(scene, 128, 128)), 0.03);
+    EXPECT_LT(differing(rasterize(scene, 128, 128), render_scene(scene, 128, 128)), 0.03);
 }
 
 // The tile size is the rasterizer's (RasterPipeline.TransparentFragmentsInSubmissionOrder
 // checks the transparent fragments do not depend on it); this checks the shading on top.
 TEST(ShadingRaster, SameBytesWhateverTheThreadCount) {
-    const Scene scene = transparent_scene();
+    const scene::Scene scene = transparent_scene();
     Frame one;
     {
         tbb::global_control limit(tbb::global_control::max_allowed_parallelism, 1);

@@ -6,10 +6,10 @@
 
 #include <cstdlib>
 
-#include "raster/rasterizer.h"
-#include "raster/reference_shading.h"
-#include "raster/stamp_shading.h"
-#include "raster/test_meshes.h"
+#include "raster/pipeline/rasterizer.h"
+#include "raster/shade/reference_shading.h"
+#include "raster/shade/stamp_shading.h"
+#include "raster/workloads/test_meshes.h"
 
 namespace tessera {
 namespace {
@@ -24,16 +24,16 @@ Camera sphere_camera() {
     return camera;
 }
 
-std::vector<uint8_t> shade(const Mesh& mesh, ShadeMode mode, bool simd, bool tile_color) {
+std::vector<uint8_t> shade(const Mesh& mesh, shade::ShadeMode mode, bool simd, bool tile_color) {
     const Camera camera = sphere_camera();
     std::vector<uint8_t> rgb8(size_t(kWidth) * kHeight * 3, 7);
-    const TilePass pass = simd ? make_stamp_shading_pass(mode, camera, rgb8)
-                               : make_reference_shading_pass(mode, camera, rgb8);
-    RasterOptions options;
+    const pipeline::TilePass pass = simd ? shade::make_stamp_shading_pass(mode, camera, rgb8)
+                               : shade::make_reference_shading_pass(mode, camera, rgb8);
+    pipeline::RasterOptions options;
     options.tile_size = 64;
     options.tile_color = tile_color;
     VisibilityBuffer vis;
-    Rasterizer().render(mesh, camera.view_projection(), Viewport(kWidth, kHeight), options, vis, {&pass, 1});
+    pipeline::Rasterizer().render(mesh, camera.view_projection(), pipeline::Viewport(kWidth, kHeight), options, vis, {&pass, 1});
     return rgb8;
 }
 
@@ -42,7 +42,7 @@ struct Difference {
     int max = 0;
 };
 
-Difference compare(const Mesh& mesh, ShadeMode mode) {
+Difference compare(const Mesh& mesh, shade::ShadeMode mode) {
     const std::vector<uint8_t> reference = shade(mesh, mode, false, true);
     const std::vector<uint8_t> fast = shade(mesh, mode, true, false);
     Difference d;
@@ -56,15 +56,15 @@ Difference compare(const Mesh& mesh, ShadeMode mode) {
 }
 
 Mesh face_normal_sphere() {
-    Mesh mesh = test_meshes::sphere(40, 24);
+    Mesh mesh = workloads::sphere(40, 24);
     mesh.normals.clear();
     mesh.uvs.clear();
     return mesh;
 }
 
 TEST(StampShading, IdDepthNormalBitIdentical) {
-    for (const Mesh& mesh : {test_meshes::sphere(200, 120), face_normal_sphere()})
-        for (ShadeMode mode : {ShadeMode::id, ShadeMode::depth, ShadeMode::normal}) {
+    for (const Mesh& mesh : {workloads::sphere(200, 120), face_normal_sphere()})
+        for (shade::ShadeMode mode : {shade::ShadeMode::id, shade::ShadeMode::depth, shade::ShadeMode::normal}) {
             const Difference d = compare(mesh, mode);
             EXPECT_EQ(d.channels, 0u) << int(mode);
             EXPECT_GT(d.lit, size_t(kWidth) * kHeight / 4) << int(mode);  // the sphere is on screen
@@ -72,8 +72,8 @@ TEST(StampShading, IdDepthNormalBitIdentical) {
 }
 
 TEST(StampShading, PhongWithinOneLevel) {
-    for (const Mesh& mesh : {test_meshes::sphere(200, 120), face_normal_sphere()}) {
-        const Difference d = compare(mesh, ShadeMode::phong);
+    for (const Mesh& mesh : {workloads::sphere(200, 120), face_normal_sphere()}) {
+        const Difference d = compare(mesh, shade::ShadeMode::phong);
         EXPECT_LE(d.max, 1);
         EXPECT_LE(d.channels, d.lit / 1000);  // rounding-boundary cases only
         EXPECT_GT(d.lit, size_t(kWidth) * kHeight / 4);

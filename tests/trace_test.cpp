@@ -1,4 +1,4 @@
-#include "raster/trace.h"
+#include "raster/core/trace.h"
 
 #include <gtest/gtest.h>
 #include <tbb/parallel_for.h>

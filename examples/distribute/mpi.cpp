@@ -16,7 +16,7 @@
 
 #include "examples/command.h"
 #include "examples/distribute.h"
-#include "raster/error.h"
+#include "raster/core/error.h"
 
 namespace tessera::cli {
 namespace {
@@ -247,7 +247,7 @@ public:
         return rank_ == 0;
     }
 
-    bool stream_bands(int frame_number, const BandLayout& layout, const RenderBands& render,
+    bool stream_bands(int frame_number, const render::BandLayout& layout, const RenderBands& render,
                       const EncodeBand& encode, const WriteBand& write) override {
         std::string failure;  // rank 0: the frame's first failure; a worker: its own
         int failed_rank = -1;
@@ -255,7 +255,7 @@ public:
             const auto fail_with = [&](int rank, const std::string& why) {
                 if (failed_rank < 0) failed_rank = rank, failure = why;
             };
-            const auto store = [&](int b, OwnedImage band) {
+            const auto store = [&](int b, output::OwnedImage band) {
                 if (failed_rank >= 0) return;  // the frame is lost; its temporary goes
                 try {
                     write(b, std::move(band));
@@ -280,8 +280,8 @@ public:
                         continue;
                     }
                     const auto [y0, y1] = layout.rows(next);
-                    OwnedImage band{layout.width, y1 - y0, 4, PixelType(m.pixel_type), {}};
-                    band.bytes.resize(size_t(band.width) * size_t(band.height) * 4 * pixel_type_bytes(band.type));
+                    output::OwnedImage band{layout.width, y1 - y0, 4, io::PixelType(m.pixel_type), {}};
+                    band.bytes.resize(size_t(band.width) * size_t(band.height) * 4 * io::pixel_type_bytes(band.type));
                     MPI_Irecv(band.bytes.data(), int(band.bytes.size()), MPI_BYTE, from, kTagPixels, MPI_COMM_WORLD,
                               &request);
                     wait_politely(request);
@@ -301,7 +301,7 @@ public:
             receive_until(layout.bands());
         } else {
             int next = rank_;  // this rank's next band not yet sent
-            const auto send = [&](const OwnedImage* band, const std::string& why) {
+            const auto send = [&](const output::OwnedImage* band, const std::string& why) {
                 Message m;
                 m.kind = band ? Message::done : Message::failed;
                 m.frame = frame_number;
@@ -319,7 +319,7 @@ public:
             };
             try {
                 render([&](int b) { return b % ranks_ == rank_; }, [&](int, const Frame& band) {
-                    const OwnedImage encoded = encode(band);
+                    const output::OwnedImage encoded = encode(band);
                     send(&encoded, "");
                 });
             } catch (const std::exception& e) {

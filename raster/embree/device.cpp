@@ -2,9 +2,9 @@
 
 #include <xmmintrin.h>
 
-#include "raster/error.h"
+#include "raster/core/error.h"
 
-namespace tessera::rt {
+namespace tessera::embree {
 namespace {
 
 // MXCSR bit 15 is flush-to-zero, bit 6 denormals-are-zero (Intel SDM vol. 1, 10.2.3).
@@ -79,4 +79,4 @@ const RayDevice& default_ray_device() {
     return device;
 }
 
-}  // namespace tessera::rt
+}  // namespace tessera::embree

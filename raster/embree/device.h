@@ -22,7 +22,7 @@
 #include <mutex>
 #include <string>
 
-namespace tessera::rt {
+namespace tessera::embree {
 
 // Sets MXCSR flush-to-zero and denormals-are-zero for the current thread while alive.
 class FlushDenormals {
@@ -72,4 +72,4 @@ private:
 // The process's default device, created on first use (thread-safe).
 const RayDevice& default_ray_device();
 
-}  // namespace tessera::rt
+}  // namespace tessera::embree

@@ -7,7 +7,7 @@
 
 #include <glm/glm.hpp>
 
-namespace tessera::rt {
+namespace tessera::embree {
 
 template <int N>
 struct Packet;
@@ -69,4 +69,4 @@ inline RTCIntersectContext coherent_context() {
     return context;
 }
 
-}  // namespace tessera::rt
+}  // namespace tessera::embree

@@ -1,13 +1,13 @@
 #include "raster/embree/ray_cast.h"
 
 #include "raster/embree/packets.h"
-#include "raster/embree/pixel_rays.h"
-#include "raster/embree/tiles.h"
+#include "raster/core/pixel_rays.h"
+#include "raster/core/tile.h"
 
 #include <stdexcept>
 #include <string>
 
-namespace tessera::rt {
+namespace tessera::embree {
 namespace {
 
 // The depth plane of the last triangle written: neighbouring pixels mostly hit the same one.
@@ -135,4 +135,4 @@ void cast_primary_rays(const RayScene& scene, const glm::mat4& view_projection, 
     });
 }
 
-}  // namespace tessera::rt
+}  // namespace tessera::embree

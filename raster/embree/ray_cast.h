@@ -15,9 +15,9 @@
 #include <span>
 
 #include "raster/embree/scene.h"
-#include "raster/visibility.h"
+#include "raster/core/visibility.h"
 
-namespace tessera::rt {
+namespace tessera::embree {
 
 // How rays are handed to Embree: one at a time (rtcIntersect1 / rtcOccluded1) or as coherent
 // packets of 8 or 16 (rtcIntersect8/16, rtcOccluded8/16 with the COHERENT context flag).
@@ -31,4 +31,4 @@ void cast_primary_rays(const RayScene& scene, const glm::mat4& view_projection, 
                        int height, VisibilityBuffer& out, RayPacket packet = RayPacket::x16,
                        std::span<const uint8_t> skip = {});
 
-}  // namespace tessera::rt
+}  // namespace tessera::embree

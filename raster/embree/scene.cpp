@@ -8,7 +8,7 @@
 #include <cstring>
 #include <stdexcept>
 
-namespace tessera::rt {
+namespace tessera::embree {
 namespace {
 
 bool finite(const glm::vec3& v) {
@@ -125,4 +125,4 @@ void RayScene::commit() {
     device_->check("cannot build the BVH");
 }
 
-}  // namespace tessera::rt
+}  // namespace tessera::embree

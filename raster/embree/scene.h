@@ -28,9 +28,9 @@
 #include <cstddef>
 
 #include "raster/embree/device.h"
-#include "raster/mesh.h"
+#include "raster/core/mesh.h"
 
-namespace tessera::rt {
+namespace tessera::embree {
 
 enum class BvhUpdate {
     none,     // static scene: MEDIUM quality BVH (best traversal), built once
@@ -82,4 +82,4 @@ private:
     bool shares_vertices_ = false;
 };
 
-}  // namespace tessera::rt
+}  // namespace tessera::embree

@@ -5,7 +5,7 @@
 
 #include "raster/embree/packets.h"
 
-namespace tessera::rt {
+namespace tessera::embree {
 namespace {
 
 struct ShadowRay {
@@ -92,4 +92,4 @@ shadow::LightTest shadow_ray_test(const RayScene& scene, RayPacket packet) {
     };
 }
 
-}  // namespace tessera::rt
+}  // namespace tessera::embree

@@ -19,7 +19,7 @@
 #include "raster/shadow/light_mask.h"
 #include "raster/shadow/surface_points.h"
 
-namespace tessera::rt {
+namespace tessera::embree {
 
 inline constexpr float kShadowRayOffset = 1.0f / 65536.0f;
 
@@ -31,4 +31,4 @@ void trace_shadow_rays(const RayScene& scene, const shadow::SurfacePoints& point
 // trace_shadow_rays bound to a scene and packet width, for shadow::compute_light_mask.
 shadow::LightTest shadow_ray_test(const RayScene& scene, RayPacket packet = RayPacket::x16);
 
-}  // namespace tessera::rt
+}  // namespace tessera::embree

@@ -8,18 +8,18 @@
 #include <cstring>
 #include <stdexcept>
 
-#include "raster/vertex_stage.h"
+#include "raster/pipeline/vertex_stage.h"
 
-namespace tessera::rt {
+namespace tessera::embree {
 
 void run_tile_passes(const Mesh& mesh, const glm::mat4& view_projection,
-                     const Viewport& viewport, VisibilityBuffer& visibility,
-                     std::span<const TilePass> passes, std::vector<glm::vec4>* color,
+                     const pipeline::Viewport& viewport, VisibilityBuffer& visibility,
+                     std::span<const pipeline::TilePass> passes, std::vector<glm::vec4>* color,
                      const glm::vec4& clear_color) {
     if (visibility.width != viewport.width || visibility.height != viewport.height)
         throw std::invalid_argument("visibility buffer and viewport differ in size");
-    ClipVertices clip;
-    run_vertex_stage(mesh, view_projection, viewport, clip);
+    pipeline::ClipVertices clip;
+    pipeline::run_vertex_stage(mesh, view_projection, viewport, clip);
     if (color) color->assign(size_t(viewport.width) * size_t(viewport.height), clear_color);
     constexpr int kTile = 64;
     const int tiles_x = (viewport.width + kTile - 1) / kTile;
@@ -30,7 +30,7 @@ void run_tile_passes(const Mesh& mesh, const glm::mat4& view_projection,
             std::vector<glm::vec4> tile_color(size_t(kTile) * kTile);
             for (int ty = tiles.rows().begin(); ty != tiles.rows().end(); ++ty)
                 for (int tx = tiles.cols().begin(); tx != tiles.cols().end(); ++tx) {
-                    TileContext context;
+                    pipeline::TileContext context;
                     context.rect = {tx * kTile, ty * kTile,
                                     std::min(viewport.width, (tx + 1) * kTile),
                                     std::min(viewport.height, (ty + 1) * kTile)};
@@ -45,7 +45,7 @@ void run_tile_passes(const Mesh& mesh, const glm::mat4& view_projection,
                     std::fill(tile_color.begin(), tile_color.end(), clear_color);
                     context.color = tile_color.data();
                     context.color_stride = size_t(kTile);
-                    for (const TilePass& pass : passes) pass(context);
+                    for (const pipeline::TilePass& pass : passes) pass(context);
                     if (color)
                         for (int y = 0; y < context.height(); ++y)
                             std::memcpy(color->data() + size_t(context.rect.y0 + y) * viewport.width +
@@ -57,4 +57,4 @@ void run_tile_passes(const Mesh& mesh, const glm::mat4& view_projection,
         tbb::simple_partitioner());
 }
 
-}  // namespace tessera::rt
+}  // namespace tessera::embree

@@ -14,18 +14,18 @@
 #include <span>
 #include <vector>
 
-#include "raster/mesh.h"
-#include "raster/tile_pass.h"
-#include "raster/viewport.h"
-#include "raster/visibility.h"
+#include "raster/core/mesh.h"
+#include "raster/pipeline/tile_pass.h"
+#include "raster/pipeline/viewport.h"
+#include "raster/core/visibility.h"
 
-namespace tessera::rt {
+namespace tessera::embree {
 
 // Runs `passes` over every tile of `visibility` (sized to `viewport`). `color`, when given,
 // is resized to width*height and receives the tile colour after the passes.
 void run_tile_passes(const Mesh& mesh, const glm::mat4& view_projection,
-                     const Viewport& viewport, VisibilityBuffer& visibility,
-                     std::span<const TilePass> passes, std::vector<glm::vec4>* color = nullptr,
+                     const pipeline::Viewport& viewport, VisibilityBuffer& visibility,
+                     std::span<const pipeline::TilePass> passes, std::vector<glm::vec4>* color = nullptr,
                      const glm::vec4& clear_color = glm::vec4(0.0f));
 
-}  // namespace tessera::rt
+}  // namespace tessera::embree

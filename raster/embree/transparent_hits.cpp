@@ -5,7 +5,7 @@
 
 #include "raster/embree/packets.h"
 
-namespace tessera::rt {
+namespace tessera::embree {
 namespace {
 
 struct Hit {
@@ -36,14 +36,14 @@ void collect_filter(const RTCFilterFunctionNArguments* args) {
 
 void for_each_transparent_hit(const RayScene& scene, const PixelRays& rays, std::span<const uint8_t> transparent,
                               const VisibilityBuffer& opaque, const ImageTile& tile,
-                              const std::function<void(uint32_t, std::span<const Fragment>)>& blend) {
+                              const std::function<void(uint32_t, std::span<const pipeline::Fragment>)>& blend) {
     using P = Packet<16>;
     std::vector<Hit> hits;
     CollectContext collect{coherent_context(), transparent.data(), &hits};
     collect.context.filter = collect_filter;
     struct Candidate {
         uint32_t triangle;
-        Fragment fragment;
+        pipeline::Fragment fragment;
     };
     std::vector<Candidate> found;
     const Mesh& mesh = scene.mesh();
@@ -70,7 +70,7 @@ void for_each_transparent_hit(const RayScene& scene, const PixelRays& rays, std:
                 const float depth = plane.at(x + 0.5, y + 0.5);
                 const size_t pixel = size_t(y) * size_t(opaque.width) + size_t(x);
                 if (depth < opaque.depth[pixel] && depth >= 0.0f)
-                    found.push_back({h.triangle, Fragment{uint16_t(x), uint16_t(y), depth}});
+                    found.push_back({h.triangle, pipeline::Fragment{uint16_t(x), uint16_t(y), depth}});
             }
         }
     // Submission order, then row order; Embree may report a triangle referenced by several
@@ -86,7 +86,7 @@ void for_each_transparent_hit(const RayScene& scene, const PixelRays& rays, std:
                                        a.fragment.y == b.fragment.y;
                             }),
                 found.end());
-    std::vector<Fragment> fragments;
+    std::vector<pipeline::Fragment> fragments;
     for (size_t i = 0; i < found.size();) {
         const uint32_t triangle = found[i].triangle;
         fragments.clear();
@@ -95,4 +95,4 @@ void for_each_transparent_hit(const RayScene& scene, const PixelRays& rays, std:
     }
 }
 
-}  // namespace tessera::rt
+}  // namespace tessera::embree

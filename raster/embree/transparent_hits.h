@@ -12,18 +12,18 @@
 #include <functional>
 #include <span>
 
-#include "raster/embree/pixel_rays.h"
+#include "raster/core/pixel_rays.h"
 #include "raster/embree/scene.h"
-#include "raster/embree/tiles.h"
-#include "raster/tile_raster.h"
-#include "raster/visibility.h"
+#include "raster/core/tile.h"
+#include "raster/pipeline/tile_raster.h"
+#include "raster/core/visibility.h"
 
-namespace tessera::rt {
+namespace tessera::embree {
 
 // Calls blend(triangle, its fragments in `tile`) once per transparent triangle (transparent[t]
 // != 0) seen in front of `opaque`, in increasing triangle id, fragments in row order.
 void for_each_transparent_hit(const RayScene& scene, const PixelRays& rays, std::span<const uint8_t> transparent,
                               const VisibilityBuffer& opaque, const ImageTile& tile,
-                              const std::function<void(uint32_t triangle, std::span<const Fragment>)>& blend);
+                              const std::function<void(uint32_t triangle, std::span<const pipeline::Fragment>)>& blend);
 
-}  // namespace tessera::rt
+}  // namespace tessera::embree

@@ -17,7 +17,7 @@
 #include <stdexcept>
 #include <vector>
 
-namespace tessera {
+namespace tessera::geometry {
 
 template <class V>
 class BezierCurve {
@@ -74,4 +74,4 @@ BezierCurve<V> catmull_rom(std::span<const V> points) {
     return BezierCurve<V>(std::move(segments));
 }
 
-}  // namespace tessera
+}  // namespace tessera::geometry

@@ -2,7 +2,7 @@
 
 #include <stdexcept>
 
-namespace tessera {
+namespace tessera::geometry {
 
 Mesh box_mesh(glm::vec3 half_extent) {
     if (!(half_extent.x > 0.0f && half_extent.y > 0.0f && half_extent.z > 0.0f))
@@ -29,4 +29,4 @@ Mesh box_mesh(glm::vec3 half_extent) {
     return m;
 }
 
-}  // namespace tessera
+}  // namespace tessera::geometry

@@ -4,11 +4,11 @@
 #pragma once
 #include <glm/glm.hpp>
 
-#include "raster/mesh.h"
+#include "raster/core/mesh.h"
 
-namespace tessera {
+namespace tessera::geometry {
 
 // Throws std::invalid_argument unless every half extent is positive.
 Mesh box_mesh(glm::vec3 half_extent);
 
-}  // namespace tessera
+}  // namespace tessera::geometry

@@ -9,7 +9,7 @@
 
 #include "raster/geometry/param_surface.h"
 
-namespace tessera {
+namespace tessera::geometry {
 namespace {
 
 struct Frame {
@@ -84,4 +84,4 @@ Mesh extrude(const BezierCurve<glm::vec3>& spine, const BezierCurve<glm::vec2>& 
     return tessellate(surface, along, around);
 }
 
-}  // namespace tessera
+}  // namespace tessera::geometry

@@ -15,9 +15,9 @@
 #include <glm/glm.hpp>
 
 #include "raster/geometry/bezier.h"
-#include "raster/mesh.h"
+#include "raster/core/mesh.h"
 
-namespace tessera {
+namespace tessera::geometry {
 
 // Tessellates the sweep with `along` x `around` quads (tessellate()'s grid and winding, in
 // parallel). `radii` gives (a, b) over the same s in [0, 1]; radii may reach 0 (a pointed tail;
@@ -26,4 +26,4 @@ namespace tessera {
 Mesh extrude(const BezierCurve<glm::vec3>& spine, const BezierCurve<glm::vec2>& radii, int along,
              int around);
 
-}  // namespace tessera
+}  // namespace tessera::geometry

@@ -7,7 +7,7 @@
 #include <stdexcept>
 #include <string>
 
-namespace tessera {
+namespace tessera::geometry {
 namespace {
 
 glm::vec3 unit_or(glm::vec3 v, glm::vec3 fallback) {
@@ -75,4 +75,4 @@ Mesh tessellate(const SurfaceFunction& surface, int n, int m) {
     return mesh;
 }
 
-}  // namespace tessera
+}  // namespace tessera::geometry

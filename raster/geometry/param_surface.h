@@ -12,9 +12,9 @@
 
 #include <functional>
 
-#include "raster/mesh.h"
+#include "raster/core/mesh.h"
 
-namespace tessera {
+namespace tessera::geometry {
 
 // One point of a surface with its partial derivatives. `normal` is the surface's analytic
 // normal (any length, pointing like dr/du x dr/dv); surfaces give it explicitly because the
@@ -33,4 +33,4 @@ using SurfaceFunction = std::function<SurfacePoint(float u, float v)>;
 // thread count. Zero-length normals (degenerate surfaces) become (0, 0, 1) rather than NaN.
 Mesh tessellate(const SurfaceFunction& surface, int n, int m);
 
-}  // namespace tessera
+}  // namespace tessera::geometry

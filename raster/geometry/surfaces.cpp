@@ -7,7 +7,7 @@
 #include <stdexcept>
 #include <string>
 
-namespace tessera {
+namespace tessera::geometry {
 namespace {
 
 constexpr float kPi = glm::pi<float>();
@@ -98,4 +98,4 @@ SurfaceFunction heightfield_surface(std::span<const float> heights, int columns,
     };
 }
 
-}  // namespace tessera
+}  // namespace tessera::geometry

@@ -8,7 +8,7 @@
 
 #include "raster/geometry/param_surface.h"
 
-namespace tessera {
+namespace tessera::geometry {
 
 // Seed: n = (cos 2pi u sin pi v, sin 2pi u sin pi v, cos pi v), p = c + R n.
 SurfaceFunction sphere_surface(glm::vec3 center, float radius);
@@ -34,4 +34,4 @@ SurfaceFunction flag_surface(float width, float height, float depth, float waves
 SurfaceFunction heightfield_surface(std::span<const float> heights, int columns, int rows,
                                     glm::vec2 size, float height_scale);
 
-}  // namespace tessera
+}  // namespace tessera::geometry

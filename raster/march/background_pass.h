@@ -6,21 +6,21 @@
 #pragma once
 #include "raster/march/pass_target.h"
 #include "raster/march/ray_generation.h"
-#include "raster/shade/background.h"
+#include "raster/shade/background_radiance.h"
 
 namespace tessera::march {
 
 class BackgroundPass {
 public:
     // Both are borrowed and must outlive the pass.
-    BackgroundPass(const RayGenerator& rays, const Background& background)
+    BackgroundPass(const RayGenerator& rays, const scene::Background& background)
         : rays_(rays), background_(background) {}
 
     void run(const PassTarget& target) const;
 
 private:
     const RayGenerator& rays_;
-    const Background& background_;
+    const scene::Background& background_;
 };
 
 }  // namespace tessera::march

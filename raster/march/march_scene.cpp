@@ -124,10 +124,10 @@ MarchScene::MarchScene(const MarchSceneSettings& settings, int width, int height
 
 MarchScene::~MarchScene() = default;
 
-std::vector<TilePass> MarchScene::passes() const {
-    std::vector<TilePass> out;
+std::vector<pipeline::TilePass> MarchScene::passes() const {
+    std::vector<pipeline::TilePass> out;
     for (const auto* pass : {&background_, &surface_, &fog_})
-        out.push_back([pass](const TileContext& tile) { (*pass)(pass_target(tile)); });
+        out.push_back([pass](const pipeline::TileContext& tile) { (*pass)(pass_target(tile)); });
     return out;
 }
 

@@ -10,7 +10,7 @@
 #include <string>
 #include <vector>
 
-#include "raster/camera.h"
+#include "raster/core/camera.h"
 #include "raster/march/fog.h"
 #include "raster/march/march_settings.h"
 #include "raster/march/metaball_kernel.h"
@@ -18,8 +18,8 @@
 #include "raster/march/ray_generation.h"
 #include "raster/march/surface_normal.h"
 #include "raster/march/surface_shading.h"
-#include "raster/shade/background.h"
-#include "raster/tile_pass.h"
+#include "raster/scene/background.h"
+#include "raster/pipeline/tile_pass.h"
 
 namespace tessera::march {
 
@@ -38,11 +38,11 @@ struct MarchSceneSettings {
     NormalSettings normals{};
     SurfaceMaterial material{};
     Fog fog{};
-    Background background = sky();
+    scene::Background background = sky();
 
-    static Background sky() {
-        Background b;
-        b.kind = Background::Kind::sky;
+    static scene::Background sky() {
+        scene::Background b;
+        b.kind = scene::Background::Kind::sky;
         return b;
     }
 };
@@ -60,7 +60,7 @@ public:
     const Camera& camera() const { return camera_; }
 
     // {background, marched surface, fog}; they borrow this object.
-    std::vector<TilePass> passes() const;
+    std::vector<pipeline::TilePass> passes() const;
 
 private:
     struct Fields;

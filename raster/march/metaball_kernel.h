@@ -18,16 +18,16 @@
 // formula in the same order; the exponential is shade::exp2_nonpositive (relative error
 // below 2e-6), which vectorises where std::exp would not.
 #pragma once
-#include "raster/shade/shade_math.h"
+#include "raster/simd/lane_math.h"
 #include "raster/simd/simd.h"
 
 namespace tessera::march {
 
 // select / sqrt / min below resolve to shade's float overloads or, by argument-dependent
 // lookup, to simd's vfloat ones.
-using shade::min;
-using shade::select;
-using shade::sqrt;
+using simd::min;
+using simd::select;
+using simd::sqrt;
 
 enum class MetaballKernel { blinn, perlin, wyvill };
 
@@ -68,14 +68,14 @@ struct BlinnKernel {
 
     explicit BlinnKernel(float a)
         : sharpness(a),
-          tail(shade::exp2_nonpositive(-a * 1.44269504088896341f)),
+          tail(simd::exp2_nonpositive(-a * 1.44269504088896341f)),
           scale(1.0f / (1.0f - tail * (1.0f + a))) {}
 
     template <class F>
     KernelSample<F> at(F s) const {
         const auto inside = s < F(1.0f);
         // e^{-a s} = 2^{-a s log2 e}; s >= 0 keeps the argument non-positive.
-        const F e = shade::exp2_nonpositive(F(-sharpness * 1.44269504088896341f) * s);
+        const F e = simd::exp2_nonpositive(F(-sharpness * 1.44269504088896341f) * s);
         const F value = (e - F(tail) * (F(1.0f) + F(sharpness) * (F(1.0f) - s))) * F(scale);
         return {select(inside, value, F(0.0f)),
                 select(inside, F(-sharpness) * (e - F(tail)) * F(scale), F(0.0f))};

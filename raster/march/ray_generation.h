@@ -10,7 +10,7 @@
 #pragma once
 #include <glm/glm.hpp>
 
-#include "raster/camera.h"
+#include "raster/core/camera.h"
 #include "raster/march/ray_packet.h"
 
 namespace tessera::march {

@@ -21,15 +21,15 @@
 #include "raster/march/ray_generation.h"
 #include "raster/march/surface_normal.h"
 #include "raster/march/surface_shading.h"
-#include "raster/shade/background.h"
-#include "raster/visibility.h"
+#include "raster/shade/background_radiance.h"
+#include "raster/core/visibility.h"
 
 namespace tessera::march {
 
 struct SurfaceLook {
     SurfaceMaterial material{};
     // A sun above and behind the viewer's right shoulder for views towards -z.
-    std::vector<Light> lights{directional_light({0.5f, 0.8f, 0.6f}, glm::vec3(0.12f), glm::vec3(1.0f))};
+    std::vector<scene::Light> lights{scene::directional_light({0.5f, 0.8f, 0.6f}, glm::vec3(0.12f), glm::vec3(1.0f))};
     NormalSettings normals{};
 };
 
@@ -39,7 +39,7 @@ public:
     // Validates the settings (std::invalid_argument). The generator and background are
     // borrowed and must outlive the pass.
     SurfacePass(Surface surface, const RayGenerator& rays, const MarchSettings& settings,
-                const SurfaceLook& look, const Background& background)
+                const SurfaceLook& look, const scene::Background& background)
         : surface_(surface), rays_(rays), settings_(settings), look_(look), background_(background) {
         surface_.validate();
         settings_.validate();
@@ -94,7 +94,7 @@ private:
     const RayGenerator& rays_;
     MarchSettings settings_;
     SurfaceLook look_;
-    const Background& background_;
+    const scene::Background& background_;
 };
 
 }  // namespace tessera::march

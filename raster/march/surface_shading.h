@@ -8,7 +8,7 @@
 #include <span>
 
 #include "raster/scene/light.h"
-#include "raster/shade/background.h"
+#include "raster/shade/background_radiance.h"
 #include "raster/shade/lighting.h"
 
 namespace tessera::march {
@@ -22,15 +22,15 @@ struct SurfaceMaterial {
 };
 
 // `p` the hit, `d` the unit ray direction, `n` the unit outward normal.
-inline glm::vec3 shade_surface(const SurfaceMaterial& m, std::span<const Light> lights,
-                               const Background& background, glm::vec3 p, glm::vec3 d, glm::vec3 n) {
-    using V = shade::V3<float>;
+inline glm::vec3 shade_surface(const SurfaceMaterial& m, std::span<const scene::Light> lights,
+                               const scene::Background& background, glm::vec3 p, glm::vec3 d, glm::vec3 n) {
+    using V = simd::V3<float>;
     auto v3 = [](glm::vec3 a) { return V{a.x, a.y, a.z}; };
     const V c = shade::blinn_phong<float>(lights, v3(p), v3(n), v3(-d), v3(m.ambient), v3(m.diffuse),
                                           v3(m.specular), m.shininess);
     glm::vec3 colour(c.x, c.y, c.z);
     if (m.reflectivity > 0.0f)
-        colour = glm::mix(colour, background_radiance(background, glm::reflect(d, n)), m.reflectivity);
+        colour = glm::mix(colour, shade::background_radiance(background, glm::reflect(d, n)), m.reflectivity);
     return colour;
 }
 

@@ -5,11 +5,11 @@
 // so the marched surfaces depth-test against the shaded triangles and the fog sees both.
 #pragma once
 #include "raster/march/pass_target.h"
-#include "raster/tile_pass.h"
+#include "raster/pipeline/tile_pass.h"
 
 namespace tessera::march {
 
-inline PassTarget pass_target(const TileContext& tile) {
+inline PassTarget pass_target(const pipeline::TileContext& tile) {
     return {tile.rect.x0, tile.rect.y0, tile.rect.x1, tile.rect.y1,
             tile.depth,   tile.stride,  tile.color,   tile.color_stride,
             tile.triangle};
@@ -18,8 +18,8 @@ inline PassTarget pass_target(const TileContext& tile) {
 // Wraps any pass with run(const PassTarget&) const; the pass is borrowed and must outlive
 // the rasterizer's render call.
 template <class Pass>
-TilePass tile_pass(const Pass& pass) {
-    return [&pass](const TileContext& tile) { pass.run(pass_target(tile)); };
+pipeline::TilePass tile_pass(const Pass& pass) {
+    return [&pass](const pipeline::TileContext& tile) { pass.run(pass_target(tile)); };
 }
 
 }  // namespace tessera::march

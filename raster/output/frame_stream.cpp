@@ -2,9 +2,9 @@
 
 #include <utility>
 
-#include "raster/trace.h"
+#include "raster/core/trace.h"
 
-namespace tessera {
+namespace tessera::output {
 
 FrameStream::FrameStream(const std::filesystem::path& path, int width, int height)
     : path_(path), file_(path, width, height, 4, frame_pixel_type(path)) {}
@@ -30,4 +30,4 @@ void FrameStream::commit() {
     file_.commit();
 }
 
-}  // namespace tessera
+}  // namespace tessera::output

@@ -7,10 +7,10 @@
 #include <filesystem>
 #include <future>
 
-#include "raster/image_stream.h"
-#include "raster/output/frame.h"
+#include "raster/io/image_stream.h"
+#include "raster/output/frame_encoding.h"
 
-namespace tessera {
+namespace tessera::output {
 
 class FrameStream {
 public:
@@ -32,8 +32,8 @@ private:
     void wait();
 
     std::filesystem::path path_;
-    ImageStream file_;
+    io::ImageStream file_;
     std::future<void> in_flight_;
 };
 
-}  // namespace tessera
+}  // namespace tessera::output

@@ -1,8 +1,8 @@
 #include "raster/output/frame_writer.h"
 
-#include "raster/trace.h"
+#include "raster/core/trace.h"
 
-namespace tessera {
+namespace tessera::output {
 
 FrameWriter::FrameWriter(size_t max_pending)
     : max_pending_(max_pending == 0 ? 1 : max_pending), worker_([this] { run(); }) {}
@@ -63,7 +63,7 @@ void FrameWriter::run() {
         std::exception_ptr failure;
         try {
             TraceScope scope("write frame", "io");
-            write_image(job.path, job.image.view());
+            io::write_image(job.path, job.image.view());
         } catch (...) {
             failure = std::current_exception();
         }
@@ -81,4 +81,4 @@ void FrameWriter::run() {
     }
 }
 
-}  // namespace tessera
+}  // namespace tessera::output

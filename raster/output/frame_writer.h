@@ -12,18 +12,18 @@
 #include <thread>
 #include <vector>
 
-#include "raster/image_io.h"
+#include "raster/io/image_io.h"
 
-namespace tessera {
+namespace tessera::output {
 
 // Pixels the writer owns while the renderer moves on to the next frame.
 struct OwnedImage {
     int width = 0;
     int height = 0;
     int channels = 0;
-    PixelType type = PixelType::u8;
+    io::PixelType type = io::PixelType::u8;
     std::vector<uint8_t> bytes;
-    ImageView view() const { return {width, height, channels, type, bytes.data()}; }
+    io::ImageView view() const { return {width, height, channels, type, bytes.data()}; }
 };
 
 class FrameWriter {
@@ -61,4 +61,4 @@ private:
     std::thread worker_;
 };
 
-}  // namespace tessera
+}  // namespace tessera::output

@@ -10,9 +10,9 @@
 #include <cstdint>
 #include <utility>
 
-#include "raster/fixed_point.h"
+#include "raster/pipeline/fixed_point.h"
 
-namespace tessera {
+namespace tessera::render {
 
 struct BandLayout {
     int width = 0, height = 0;  // the whole frame
@@ -27,7 +27,7 @@ struct BandLayout {
 };
 
 // Frames larger than one viewport either way are rendered in bands.
-inline bool needs_bands(int width, int height) { return width > kMaxViewport || height > kMaxViewport; }
+inline bool needs_bands(int width, int height) { return width > pipeline::kMaxViewport || height > pipeline::kMaxViewport; }
 
 // The layout tessera uses: about 4 M pixels per band (64 MiB of float RGBA, plus the
 // visibility of one region), rows a multiple of 128 (the raster tile and the 64-pixel file
@@ -36,8 +36,8 @@ inline BandLayout band_layout(int width, int height) {
     constexpr int64_t kBandPixels = int64_t(1) << 22;
     constexpr int kRowAlign = 128;
     const int64_t rows = std::clamp<int64_t>(kBandPixels / std::max(width, 1) / kRowAlign * kRowAlign, kRowAlign,
-                                             kMaxViewport);
-    return {width, height, int(std::min<int64_t>(rows, std::max(height, 1))), std::min(width, kMaxViewport)};
+                                             pipeline::kMaxViewport);
+    return {width, height, int(std::min<int64_t>(rows, std::max(height, 1))), std::min(width, pipeline::kMaxViewport)};
 }
 
-}  // namespace tessera
+}  // namespace tessera::render

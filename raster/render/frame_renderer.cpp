@@ -11,7 +11,7 @@
 #include <vector>
 
 #include "raster/embree/device.h"
-#include "raster/embree/pixel_rays.h"
+#include "raster/core/pixel_rays.h"
 #include "raster/embree/ray_cast.h"
 #include "raster/embree/scene.h"
 #include "raster/embree/shadow_rays.h"
@@ -25,9 +25,9 @@
 #include "raster/shadow/light_mask.h"
 #include "raster/shadow/shadow_map.h"
 #include "raster/shadow/surface_points.h"
-#include "raster/trace.h"
+#include "raster/core/trace.h"
 
-namespace tessera {
+namespace tessera::render {
 
 RendererKind parse_renderer(std::string_view name) {
     if (name == "raster") return RendererKind::raster;
@@ -53,7 +53,7 @@ double ms_since(Clock::time_point t0) {
 // its direction, far beyond any scene here, so the rays are parallel to within 1e-4 rad.
 constexpr float kDistantLight = 1.0e4f;
 
-glm::vec3 shadow_target(const Light& light) {
+glm::vec3 shadow_target(const scene::Light& light) {
     const glm::vec3 p(light.position);
     return light.position.w == 0.0f ? glm::normalize(p) * kDistantLight : p;
 }
@@ -66,7 +66,7 @@ struct TileView {
     size_t stride;
     glm::vec4* colour;
     size_t colour_stride;
-    const TileContext* context;  // raster renderer only (transparent triangles)
+    const pipeline::TileContext* context;  // raster renderer only (transparent triangles)
 };
 
 }  // namespace
@@ -74,8 +74,8 @@ struct TileView {
 // What every region of one frame shares, built once per frame: the animated scene baked, the
 // BVH, the lights' shadow tests, the metaballs at this time.
 struct FrameState {
-    BakedScene baked;
-    std::optional<rt::RayScene> rays;
+    scene::BakedScene baked;
+    std::optional<embree::RayScene> rays;
     std::vector<glm::vec3> light_targets;
     std::vector<shadow::ShadowMap> maps;
     shadow::LightTest light_test;
@@ -94,14 +94,14 @@ struct FrameRenderer::Impl {
     int width, height;
     RendererKind renderer;
     ShadowMode shadows;
-    Rasterizer rasterizer;
-    std::optional<rt::RayDevice> device;
+    pipeline::Rasterizer rasterizer;
+    std::optional<embree::RayDevice> device;
     std::vector<procedural::TerrainField> terrains;  // one per terrain pass, built once
     int rows_first = 0, rows_last = 1 << 30;  // set_rows
 
     Impl(AnimatedScene& s, int w, int h, RendererKind r, ShadowMode sh)
         : scene(s), width(w), height(h), renderer(r), shadows(sh) {
-        for (const PassSpec& p : scene.spec.passes)
+        for (const PassSpec& p : scene.passes)
             if (p.kind == PassSpec::Kind::terrain) terrains.emplace_back(p.terrain);
     }
 
@@ -162,7 +162,7 @@ void FrameRenderer::render_bands(float time, const BandLayout& layout, const Ban
                                  const BandSink& deliver, FrameStats* stats) {
     Impl& im = *impl_;
     if (layout.width != im.width || layout.height != im.height || layout.band_rows <= 0 ||
-        layout.region_width <= 0 || layout.region_width > kMaxViewport || layout.band_rows > kMaxViewport)
+        layout.region_width <= 0 || layout.region_width > pipeline::kMaxViewport || layout.band_rows > pipeline::kMaxViewport)
         throw std::invalid_argument("render_bands: the band layout does not fit the renderer's " +
                                     std::to_string(im.width) + "x" + std::to_string(im.height) + " frame");
     im.frame(time, stats, [&](const FrameState& state, FrameStats& st) {
@@ -189,7 +189,7 @@ void FrameRenderer::render_bands(float time, const BandLayout& layout, const Ban
 }
 
 void FrameRenderer::Impl::prepare(float time, FrameState& frame, FrameStats& stats) {
-    Scene& s = scene.scene;
+    scene::Scene& s = scene.scene;
     {
         TraceScope trace("animate");
         const auto t0 = Clock::now();
@@ -199,21 +199,21 @@ void FrameRenderer::Impl::prepare(float time, FrameState& frame, FrameStats& sta
     {
         TraceScope trace("bake");
         const auto t0 = Clock::now();
-        frame.baked = bake(s);
-        rt::reserve_ray_padding(frame.baked.mesh);
+        frame.baked = scene::bake(s);
+        embree::reserve_ray_padding(frame.baked.mesh);
         stats.bake_ms = ms_since(t0);
     }
     stats.triangles = frame.baked.mesh.triangle_count();
     if (device) {
         TraceScope trace("bvh");
         const auto t0 = Clock::now();
-        frame.rays.emplace(*device, frame.baked.mesh, rt::BvhUpdate::rebuild);
+        frame.rays.emplace(*device, frame.baked.mesh, embree::BvhUpdate::rebuild);
         stats.bvh_ms = ms_since(t0);
     }
     if (shadows != ShadowMode::none && !s.lights.empty()) {
-        for (const Light& l : s.lights) frame.light_targets.push_back(shadow_target(l));
+        for (const scene::Light& l : s.lights) frame.light_targets.push_back(shadow_target(l));
         if (shadows == ShadowMode::rays) {
-            frame.light_test = rt::shadow_ray_test(*frame.rays);
+            frame.light_test = embree::shadow_ray_test(*frame.rays);
         } else {
             TraceScope map_trace("shadow maps");
             frame.maps.reserve(s.lights.size());
@@ -222,14 +222,14 @@ void FrameRenderer::Impl::prepare(float time, FrameState& frame, FrameStats& sta
             frame.light_test = shadow::shadow_map_test(frame.maps);
         }
     }
-    for (const PassSpec& p : scene.spec.passes)
+    for (const PassSpec& p : scene.passes)
         if (p.kind == PassSpec::Kind::metaballs) {
             std::vector<march::Metaball> balls = march::orbiting_metaballs(p.count, time, p.ball_radius);
             for (march::Metaball& b : balls) b.centre = b.centre * p.orbit_scale + p.offset;
             frame.metaballs.emplace_back(balls, p.style);
         }
     bool any_transparent = false;
-    for (const Material& m : s.materials) any_transparent |= m.transparent();
+    for (const scene::Material& m : s.materials) any_transparent |= m.transparent();
     if (any_transparent) {
         const std::vector<uint32_t>& material = frame.baked.triangle_material;
         frame.transparent.resize(material.size());
@@ -240,28 +240,28 @@ void FrameRenderer::Impl::prepare(float time, FrameState& frame, FrameStats& sta
 void FrameRenderer::Impl::render_region(const FrameState& frame, const Region& region,
                                         std::vector<glm::vec4>& colour, int rows_from, int rows_to,
                                         FrameStats& stats) {
-    const Scene& s = scene.scene;
-    const BakedScene& baked = frame.baked;
+    const scene::Scene& s = scene.scene;
+    const scene::BakedScene& baked = frame.baked;
     const int w = region.width, h = region.height;
     const glm::mat4 view_projection = region.camera.view_projection();
-    const RenderState state{region.camera, w, h, s.lights};
-    const FrameShading shading(baked, s, state);
+    const shade::RenderState state{region.camera, w, h, s.lights};
+    const shade::FrameShading shading(baked, s, state);
 
     // Shadows: one shading per subset of lit lights (bit l set: light l reaches the point).
     const size_t light_count = frame.light_targets.size();
     const uint32_t all_lit = (1u << light_count) - 1u;
-    std::vector<std::unique_ptr<FrameShading>> subset_shading;
+    std::vector<std::unique_ptr<shade::FrameShading>> subset_shading;
     if (light_count > 0) {
         TraceScope trace("shadow setup");
         subset_shading.resize(all_lit);
         tbb::parallel_for(uint32_t(0), all_lit, [&](uint32_t mask) {
-            RenderState dimmed = state;
+            shade::RenderState dimmed = state;
             for (size_t l = 0; l < light_count; ++l)
                 if (!(mask & (1u << l))) dimmed.lights[l].Le = glm::vec3(0.0f);
-            subset_shading[mask] = std::make_unique<FrameShading>(baked, s, std::move(dimmed));
+            subset_shading[mask] = std::make_unique<shade::FrameShading>(baked, s, std::move(dimmed));
         });
     }
-    const rt::PixelRays pixel_rays(view_projection, w, h);
+    const PixelRays pixel_rays(view_projection, w, h);
     std::atomic<uint64_t> shadowed{0};
 
     // The scene's compute passes, seen through this region's camera.
@@ -269,7 +269,7 @@ void FrameRenderer::Impl::render_region(const FrameState& frame, const Region& r
     std::vector<std::function<void(const march::PassTarget&)>> compute_passes;
     {
         size_t terrain_i = 0, metaball_i = 0;
-        for (const PassSpec& p : scene.spec.passes) {
+        for (const PassSpec& p : scene.passes) {
             const march::SurfaceLook look{p.material, s.lights, {}};
             switch (p.kind) {
                 case PassSpec::Kind::terrain: {
@@ -298,20 +298,20 @@ void FrameRenderer::Impl::render_region(const FrameState& frame, const Region& r
     const auto tile_work = [&](const TileView& v) {
         if (v.y1 <= rows_from || v.y0 >= rows_to) return;
         TraceScope trace("tile", "tile", v.x0, v.y0);
-        const TileTarget target{v.x0, v.y0, v.x1 - v.x0, v.y1 - v.y0, v.triangle, v.stride, v.colour, v.colour_stride};
+        const shade::TileTarget target{v.x0, v.y0, v.x1 - v.x0, v.y1 - v.y0, v.triangle, v.stride, v.colour, v.colour_stride};
         {
             TraceScope t("shade", "tile");
-            shade_tile(shading, target);
+            shade::shade_tile(shading, target);
         }
         if (!subset_shading.empty()) {
             TraceScope t("shadow test", "tile");
             shadow::SurfacePoints points;
-            shadow::gather_surface_points(visibility, baked.mesh, pixel_rays, rt::ImageTile{v.x0, v.y0, v.x1, v.y1},
+            shadow::gather_surface_points(visibility, baked.mesh, pixel_rays, ImageTile{v.x0, v.y0, v.x1, v.y1},
                                           points);
             std::vector<uint8_t> lit(points.size(), 0), facing(points.size(), 0);
             shadow::facing_lights(points, frame.light_targets, facing);
             frame.light_test(points, frame.light_targets, lit);
-            std::vector<std::vector<CoveredPixel>> groups(all_lit);
+            std::vector<std::vector<shade::CoveredPixel>> groups(all_lit);
             for (size_t i = 0; i < points.size(); ++i) {
                 const uint32_t mask = (lit[i] | ~facing[i]) & all_lit;
                 if (mask == all_lit) continue;
@@ -325,7 +325,7 @@ void FrameRenderer::Impl::render_region(const FrameState& frame, const Region& r
                 colours.resize(groups[mask].size());
                 subset_shading[mask]->shade(groups[mask], colours);
                 for (size_t i = 0; i < colours.size(); ++i) {
-                    const CoveredPixel& c = groups[mask][i];
+                    const shade::CoveredPixel& c = groups[mask][i];
                     v.colour[size_t(c.y - v.y0) * v.colour_stride + size_t(c.x - v.x0)] = colours[i];
                 }
                 shadowed += groups[mask].size();
@@ -335,16 +335,16 @@ void FrameRenderer::Impl::render_region(const FrameState& frame, const Region& r
             // Transparent triangles in front of the opaque surface, blended in submission order
             // over what is drawn so far: the rasterizer replays its bins, rays collect them.
             TraceScope t("transparent", "tile");
-            std::vector<CoveredPixel> fragments;
-            const auto add = [&](uint32_t triangle, std::span<const Fragment> f) {
-                for (const Fragment& frag : f) fragments.push_back({frag.x, frag.y, triangle});
+            std::vector<shade::CoveredPixel> fragments;
+            const auto add = [&](uint32_t triangle, std::span<const pipeline::Fragment> f) {
+                for (const pipeline::Fragment& frag : f) fragments.push_back({frag.x, frag.y, triangle});
             };
             if (v.context)
                 v.context->for_each_transparent(add);
             else
-                rt::for_each_transparent_hit(*frame.rays, pixel_rays, frame.transparent, visibility,
-                                             rt::ImageTile{v.x0, v.y0, v.x1, v.y1}, add);
-            if (!fragments.empty()) blend_fragments(shading, fragments, target);
+                embree::for_each_transparent_hit(*frame.rays, pixel_rays, frame.transparent, visibility,
+                                             ImageTile{v.x0, v.y0, v.x1, v.y1}, add);
+            if (!fragments.empty()) shade::blend_fragments(shading, fragments, target);
         }
         for (const auto& pass : compute_passes) {
             TraceScope t("compute pass", "tile");
@@ -355,14 +355,14 @@ void FrameRenderer::Impl::render_region(const FrameState& frame, const Region& r
     if (renderer == RendererKind::raster) {
         TraceScope trace("raster");
         const auto t0 = Clock::now();
-        RasterOptions options;
+        pipeline::RasterOptions options;
         options.transparent = frame.transparent;
-        const TilePass pass = [&](const TileContext& c) {
+        const pipeline::TilePass pass = [&](const pipeline::TileContext& c) {
             tile_work(TileView{c.rect.x0, c.rect.y0, c.rect.x1, c.rect.y1, c.triangle, c.depth, c.stride, c.color,
                                c.color_stride, &c});
         };
-        RasterStats raster;
-        rasterizer.render(baked.mesh, view_projection, Viewport(w, h), options, visibility, {&pass, 1}, &colour,
+        pipeline::RasterStats raster;
+        rasterizer.render(baked.mesh, view_projection, pipeline::Viewport(w, h), options, visibility, {&pass, 1}, &colour,
                           &raster);
         stats.raster += raster;
         stats.tiles_ms += raster.passes_ms;
@@ -371,7 +371,7 @@ void FrameRenderer::Impl::render_region(const FrameState& frame, const Region& r
         {
             TraceScope trace("primary rays");
             const auto t0 = Clock::now();
-            rt::cast_primary_rays(*frame.rays, view_projection, w, h, visibility, rt::RayPacket::x16,
+            embree::cast_primary_rays(*frame.rays, view_projection, w, h, visibility, embree::RayPacket::x16,
                                   frame.transparent);
             stats.visibility_ms += ms_since(t0);
         }
@@ -396,4 +396,4 @@ void FrameRenderer::Impl::render_region(const FrameState& frame, const Region& r
     stats.shadowed_pixels += shadowed.load();
 }
 
-}  // namespace tessera
+}  // namespace tessera::render

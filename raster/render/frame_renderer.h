@@ -27,12 +27,12 @@
 #include <memory>
 #include <string_view>
 
-#include "raster/output/frame.h"
-#include "raster/rasterizer.h"
+#include "raster/core/frame.h"
+#include "raster/pipeline/rasterizer.h"
 #include "raster/render/band_layout.h"
-#include "raster/scene_file/scene_build.h"
+#include "raster/render/animated_scene.h"
 
-namespace tessera {
+namespace tessera::render {
 
 enum class RendererKind { raster, raytrace };
 enum class ShadowMode { none, map, rays };
@@ -47,7 +47,7 @@ struct FrameStats {
     double animate_ms = 0, bake_ms = 0, bvh_ms = 0, visibility_ms = 0, tiles_ms = 0, total_ms = 0;
     uint64_t triangles = 0;
     uint64_t shadowed_pixels = 0;
-    RasterStats raster;  // the raster renderer's own counts and stage times
+    pipeline::RasterStats raster;  // the raster renderer's own counts and stage times
 };
 
 class FrameRenderer {
@@ -81,4 +81,4 @@ private:
     std::unique_ptr<Impl> impl_;
 };
 
-}  // namespace tessera
+}  // namespace tessera::render

@@ -5,7 +5,7 @@
 #pragma once
 #include <glm/glm.hpp>
 
-namespace tessera {
+namespace tessera::scene {
 
 struct Light {
     glm::vec4 position{0.0f, 0.0f, 1.0f, 0.0f};
@@ -22,4 +22,4 @@ inline Light directional_light(glm::vec3 towards_light, glm::vec3 La, glm::vec3 
     return {glm::vec4(towards_light, 0.0f), La, Le};
 }
 
-}  // namespace tessera
+}  // namespace tessera::scene

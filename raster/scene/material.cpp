@@ -4,7 +4,7 @@
 #include <cmath>
 #include <stdexcept>
 
-namespace tessera {
+namespace tessera::scene {
 namespace {
 
 [[noreturn]] void bad(const std::string& what) {
@@ -58,18 +58,18 @@ ShadingModel parse_shading_model(std::string_view name) {
         "' (expected flat, gouraud, phong or toon)");
 }
 
-TextureFilter parse_texture_filter(std::string_view name) {
-    if (name == "nearest") return TextureFilter::nearest;
-    if (name == "bilinear") return TextureFilter::bilinear;
-    if (name == "mipmap") return TextureFilter::mipmap;
-    if (name == "trilinear") return TextureFilter::trilinear;
+texture::TextureFilter parse_texture_filter(std::string_view name) {
+    if (name == "nearest") return texture::TextureFilter::nearest;
+    if (name == "bilinear") return texture::TextureFilter::bilinear;
+    if (name == "mipmap") return texture::TextureFilter::mipmap;
+    if (name == "trilinear") return texture::TextureFilter::trilinear;
     bad("'filter': unknown filter '" + std::string(name) +
         "' (expected nearest, bilinear, mipmap or trilinear)");
 }
 
-TextureWrap parse_texture_wrap(std::string_view name) {
-    if (name == "repeat") return TextureWrap::repeat;
-    if (name == "clamp") return TextureWrap::clamp;
+texture::TextureWrap parse_texture_wrap(std::string_view name) {
+    if (name == "repeat") return texture::TextureWrap::repeat;
+    if (name == "clamp") return texture::TextureWrap::clamp;
     bad("'wrap': unknown wrap mode '" + std::string(name) + "' (expected repeat or clamp)");
 }
 
@@ -110,4 +110,4 @@ std::vector<std::string> set_material_parameters(Material& material,
     return warnings;
 }
 
-}  // namespace tessera
+}  // namespace tessera::scene

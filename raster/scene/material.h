@@ -12,7 +12,9 @@
 #include <string_view>
 #include <vector>
 
-namespace tessera {
+#include "raster/texture/sampler.h"
+
+namespace tessera::scene {
 
 enum class ShadingModel : uint8_t {
     flat,     // one colour per triangle: the face normal, lit at the triangle's centroid
@@ -20,12 +22,6 @@ enum class ShadingModel : uint8_t {
     phong,    // Blinn-Phong per pixel with N, V, L interpolated and renormalised
     toon,     // two diffuse levels, black silhouette (seed's NPR shader)
 };
-
-// nearest and bilinear read the full-resolution level (GL_NEAREST, GL_LINEAR); mipmap reads
-// the nearest mip level bilinearly (GL_LINEAR_MIPMAP_NEAREST); trilinear blends the two
-// nearest levels (GL_LINEAR_MIPMAP_LINEAR).
-enum class TextureFilter : uint8_t { nearest, bilinear, mipmap, trilinear };
-enum class TextureWrap : uint8_t { repeat, clamp };
 
 inline constexpr int32_t kNoTexture = -1;
 
@@ -38,8 +34,8 @@ struct Material {
     float opacity = 1.0f;  // < 1: drawn after the opaque pass, blended in submission order
     int32_t diffuse_texture = kNoTexture;  // index into the scene's textures; modulates kd
     int32_t normal_texture = kNoTexture;   // tangent-space normal map (per-pixel models only)
-    TextureFilter filter = TextureFilter::trilinear;
-    TextureWrap wrap = TextureWrap::repeat;
+    texture::TextureFilter filter = texture::TextureFilter::trilinear;
+    texture::TextureWrap wrap = texture::TextureWrap::repeat;
     glm::vec2 uv_scale{1.0f};  // texture coordinates are multiplied by this before sampling
 
     bool transparent() const { return opacity < 1.0f; }
@@ -48,8 +44,8 @@ struct Material {
 const char* to_string(ShadingModel model);
 // Throws std::invalid_argument naming the accepted values.
 ShadingModel parse_shading_model(std::string_view name);
-TextureFilter parse_texture_filter(std::string_view name);
-TextureWrap parse_texture_wrap(std::string_view name);
+texture::TextureFilter parse_texture_filter(std::string_view name);
+texture::TextureWrap parse_texture_wrap(std::string_view name);
 
 // A parameter as a scene description gives it: numbers ("kd": [0.8, 0.2, 0.1]) or a word
 // ("model": "toon").
@@ -67,4 +63,4 @@ struct MaterialParameter {
 std::vector<std::string> set_material_parameters(Material& material,
                                                  std::span<const MaterialParameter> parameters);
 
-}  // namespace tessera
+}  // namespace tessera::scene

@@ -7,7 +7,7 @@
 #include <stdexcept>
 #include <string>
 
-namespace tessera {
+namespace tessera::scene {
 namespace {
 
 bool texture_ok(int32_t index, size_t count) {
@@ -114,4 +114,4 @@ BakedScene bake(const Scene& scene) {
     return baked;
 }
 
-}  // namespace tessera
+}  // namespace tessera::scene

@@ -10,15 +10,15 @@
 #include <string>
 #include <vector>
 
-#include "raster/camera.h"
-#include "raster/mesh.h"
+#include "raster/core/camera.h"
+#include "raster/core/mesh.h"
 #include "raster/scene/light.h"
 #include "raster/scene/material.h"
 #include "raster/scene/transform.h"
-#include "raster/shade/background.h"
+#include "raster/scene/background.h"
 #include "raster/texture/texture.h"
 
-namespace tessera {
+namespace tessera::scene {
 
 struct Object {
     std::string name;
@@ -34,7 +34,7 @@ struct Scene {
     Camera camera;
     std::vector<Object> objects;
     std::vector<Material> materials;
-    std::vector<Texture> textures;  // Material::diffuse_texture / normal_texture index these
+    std::vector<texture::Texture> textures;  // Material::diffuse_texture / normal_texture index these
     std::vector<Light> lights;
     Background background;
 
@@ -61,4 +61,4 @@ struct BakedScene {
 // zeros there (shading then uses the face normal). Calls validate() first.
 BakedScene bake(const Scene& scene);
 
-}  // namespace tessera
+}  // namespace tessera::scene

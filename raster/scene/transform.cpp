@@ -5,7 +5,7 @@
 #include <cmath>
 #include <stdexcept>
 
-namespace tessera {
+namespace tessera::scene {
 namespace {
 
 void check(const Transform& t) {
@@ -39,4 +39,4 @@ glm::mat4 Transform::inverse() const {
 
 glm::mat3 Transform::normal_matrix() const { return glm::transpose(glm::mat3(inverse())); }
 
-}  // namespace tessera
+}  // namespace tessera::scene

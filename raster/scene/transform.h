@@ -6,7 +6,7 @@
 #pragma once
 #include <glm/glm.hpp>
 
-namespace tessera {
+namespace tessera::scene {
 
 struct Transform {
     glm::vec3 scale{1.0f};
@@ -22,4 +22,4 @@ struct Transform {
     glm::mat3 normal_matrix() const;
 };
 
-}  // namespace tessera
+}  // namespace tessera::scene

@@ -4,7 +4,7 @@
 #include "procedural/rd_initial.h"
 #include "procedural/rd_presets.h"
 
-namespace tessera {
+namespace tessera::scene_file {
 
 namespace tp = tessera::procedural;
 
@@ -17,13 +17,13 @@ tp::ReactionDiffusion rd_simulation(const TextureSpec& t) {
     return tp::ReactionDiffusion(params, tp::rd_initial_noise(t.size, t.size, t.seed, 12.0f));
 }
 
-Texture rd_texture(const tp::RdState& state, const TextureSpec& t) {
+texture::Texture rd_texture(const tp::RdState& state, const TextureSpec& t) {
     const std::vector<uint8_t> rgb = t.ramp.empty() ? tp::rd_colorize(state) : tp::rd_colorize(state, t.ramp);
     // rd_colorize quantises the ramp's linear values to bytes; they stay linear here.
     std::vector<glm::vec4> texels(size_t(state.a.width) * size_t(state.a.height));
     for (size_t i = 0; i < texels.size(); ++i)
         texels[i] = glm::vec4(rgb[3 * i] / 255.0f, rgb[3 * i + 1] / 255.0f, rgb[3 * i + 2] / 255.0f, 1.0f);
-    return Texture(state.a.width, state.a.height, std::move(texels));
+    return texture::Texture(state.a.width, state.a.height, std::move(texels));
 }
 
-}  // namespace tessera
+}  // namespace tessera::scene_file

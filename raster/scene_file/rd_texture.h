@@ -8,13 +8,13 @@
 #include "raster/scene_file/scene_spec.h"
 #include "raster/texture/texture.h"
 
-namespace tessera {
+namespace tessera::scene_file {
 
 // The simulation at step 0 (the initial noise), validated.
 procedural::ReactionDiffusion rd_simulation(const TextureSpec& t);
 
 // The state's colours (A - B through the ramp, quantised to bytes as rd_colorize does, kept
 // linear).
-Texture rd_texture(const procedural::RdState& state, const TextureSpec& t);
+texture::Texture rd_texture(const procedural::RdState& state, const TextureSpec& t);
 
-}  // namespace tessera
+}  // namespace tessera::scene_file

@@ -12,33 +12,33 @@
 #include "raster/geometry/box.h"
 #include "raster/geometry/param_surface.h"
 #include "raster/geometry/surfaces.h"
-#include "raster/obj_loader.h"
+#include "raster/io/obj_loader.h"
 #include "raster/scene_file/rd_texture.h"
 #include "raster/scene_file/scene_file_error.h"
-#include "raster/scene_file/snake.h"
+#include "raster/geometry/snake.h"
 
-namespace tessera {
+namespace tessera::scene_file {
 namespace {
 
 namespace tp = tessera::procedural;
 
-Texture reaction_diffusion_texture(const TextureSpec& t) {
+texture::Texture reaction_diffusion_texture(const TextureSpec& t) {
     tp::ReactionDiffusion rd = rd_simulation(t);
     rd.step(t.steps);
     return rd_texture(rd.state(), t);
 }
 
-Texture relief_normal_texture(const TextureSpec& t) {
+texture::Texture relief_normal_texture(const TextureSpec& t) {
     const tp::Grid heights = tp::generate_heightfield(t.size, t.size, t.relief);
     const tp::NormalMap normals = tp::normal_map(heights, t.strength, tp::Boundary::periodic);
     std::vector<glm::vec4> texels(size_t(t.size) * size_t(t.size));
     for (size_t i = 0; i < texels.size(); ++i)
         texels[i] = glm::vec4(glm::vec3(normals.xyz[3 * i], normals.xyz[3 * i + 1], normals.xyz[3 * i + 2]) * 0.5f + 0.5f,
                               1.0f);
-    return Texture(t.size, t.size, std::move(texels));
+    return texture::Texture(t.size, t.size, std::move(texels));
 }
 
-Texture build_texture(const TextureSpec& t, const std::filesystem::path& scene_file) {
+texture::Texture build_texture(const TextureSpec& t, const std::filesystem::path& scene_file) {
     switch (t.kind) {
         case TextureSpec::Kind::reaction_diffusion: return reaction_diffusion_texture(t);
         case TextureSpec::Kind::relief_normals: return relief_normal_texture(t);
@@ -46,7 +46,7 @@ Texture build_texture(const TextureSpec& t, const std::filesystem::path& scene_f
     }
     const std::filesystem::path path = t.file.is_absolute() ? t.file : scene_file.parent_path() / t.file;
     try {
-        return load_texture(path, t.encoding);
+        return texture::load_texture(path, t.encoding);
     } catch (const Error& e) {
         throw SceneFileError(scene_file.string() + ": /textures/" + t.name + ": " + e.what());
     }
@@ -73,8 +73,8 @@ struct Ground {
 };
 
 // The transform's rotation followed by `spin` rad/s about `axis` after `time` seconds.
-Transform spun(const Transform& base, glm::vec3 axis, float spin, float time) {
-    Transform t = base;
+scene::Transform spun(const scene::Transform& base, glm::vec3 axis, float spin, float time) {
+    scene::Transform t = base;
     const glm::quat q = glm::angleAxis(spin * time, glm::normalize(axis)) *
                         (base.angle != 0.0f ? glm::angleAxis(base.angle, glm::normalize(base.axis)) : glm::quat(1, 0, 0, 0));
     t.angle = glm::angle(q);
@@ -82,7 +82,7 @@ Transform spun(const Transform& base, glm::vec3 axis, float spin, float time) {
     return t;
 }
 
-void set_rotation(Transform& t, const glm::quat& q) {
+void set_rotation(scene::Transform& t, const glm::quat& q) {
     t.angle = glm::angle(q);
     t.axis = t.angle != 0.0f ? glm::axis(q) : glm::vec3(0.0f, 1.0f, 0.0f);
 }
@@ -93,42 +93,42 @@ uint32_t material_index(const SceneSpec& spec, const std::string& name) {
     throw std::invalid_argument("material '" + name + "' is not defined");
 }
 
-void add_snake(Scene& scene, const SceneSpec& spec, const ObjectSpec& o,
+void add_snake(scene::Scene& scene, const SceneSpec& spec, const ObjectSpec& o,
                const std::shared_ptr<const Ground>& ground) {
     const SnakeSpec snake = o.snake;
     // Without a heightfield the snake lies on the plane y = its transform's translation.y.
     const float plane = o.transform.translation.y;
-    const GroundHeight height = ground ? GroundHeight([ground](float x, float z) { return ground->height(x, z); })
-                                       : GroundHeight([plane](float, float) { return plane; });
+    const geometry::GroundHeight height = ground ? geometry::GroundHeight([ground](float x, float z) { return ground->height(x, z); })
+                                       : geometry::GroundHeight([plane](float, float) { return plane; });
     const uint32_t skin = material_index(spec, o.material);
     const uint32_t eye = snake.eye_material.empty() ? skin : material_index(spec, snake.eye_material);
 
-    Object body{o.name, std::make_shared<const Mesh>(snake_body(snake, snake_spine(snake, 0.0f, height))), skin, {}, {}};
-    body.animate = [snake, height](Object& self, float time) {
-        self.geometry = std::make_shared<const Mesh>(snake_body(snake, snake_spine(snake, time, height)));
+    scene::Object body{o.name, std::make_shared<const Mesh>(geometry::snake_body(snake, geometry::snake_spine(snake, 0.0f, height))), skin, {}, {}};
+    body.animate = [snake, height](scene::Object& self, float time) {
+        self.geometry = std::make_shared<const Mesh>(geometry::snake_body(snake, geometry::snake_spine(snake, time, height)));
     };
     scene.objects.push_back(std::move(body));
 
-    const auto place_head = [snake, height](Object& self, float time) {
-        const SnakeHead head = snake_head(snake, snake_spine(snake, time, height));
+    const auto place_head = [snake, height](scene::Object& self, float time) {
+        const geometry::SnakeHead head = geometry::snake_head(snake, geometry::snake_spine(snake, time, height));
         self.transform.translation = head.centre;
         set_rotation(self.transform, head.orientation);
     };
-    Object head{o.name + " head", nullptr, skin, {}, place_head};
-    const SnakeHead head0 = snake_head(snake, snake_spine(snake, 0.0f, height));
-    head.geometry = std::make_shared<const Mesh>(tessellate(ellipsoid_surface(glm::vec3(0.0f), head0.radii), 32, 16));
+    scene::Object head{o.name + " head", nullptr, skin, {}, place_head};
+    const geometry::SnakeHead head0 = geometry::snake_head(snake, geometry::snake_spine(snake, 0.0f, height));
+    head.geometry = std::make_shared<const Mesh>(geometry::tessellate(geometry::ellipsoid_surface(glm::vec3(0.0f), head0.radii), 32, 16));
     place_head(head, 0.0f);
     scene.objects.push_back(std::move(head));
 
     const auto eye_mesh = std::make_shared<const Mesh>(
-        tessellate(sphere_surface(glm::vec3(0.0f), snake_eye_radius(snake)), 16, 8));
+        geometry::tessellate(geometry::sphere_surface(glm::vec3(0.0f), geometry::snake_eye_radius(snake)), 16, 8));
     for (float side : {-1.0f, 1.0f}) {
-        const auto place_eye = [snake, height, side](Object& self, float time) {
-            const SnakeHead head = snake_head(snake, snake_spine(snake, time, height));
-            self.transform.translation = head.centre + head.orientation * snake_eye_offset(head, side);
+        const auto place_eye = [snake, height, side](scene::Object& self, float time) {
+            const geometry::SnakeHead head = geometry::snake_head(snake, geometry::snake_spine(snake, time, height));
+            self.transform.translation = head.centre + head.orientation * geometry::snake_eye_offset(head, side);
             set_rotation(self.transform, head.orientation);
         };
-        Object e{o.name + (side < 0 ? " left eye" : " right eye"), eye_mesh, eye, {}, place_eye};
+        scene::Object e{o.name + (side < 0 ? " left eye" : " right eye"), eye_mesh, eye, {}, place_eye};
         place_eye(e, 0.0f);
         scene.objects.push_back(std::move(e));
     }
@@ -136,55 +136,9 @@ void add_snake(Scene& scene, const SceneSpec& spec, const ObjectSpec& o,
 
 }  // namespace
 
-Camera camera_at(const CameraSpec& spec, float time, float aspect) {
-    Camera c = spec.camera;
-    c.aspect = aspect;
-    const auto& k = spec.keys;
-    if (!k.empty()) {
-        if (time <= k.front().time || k.size() == 1) {
-            c.eye = k.front().eye, c.lookat = k.front().lookat, c.fovy_deg = k.front().fovy_deg;
-        } else if (time >= k.back().time) {
-            c.eye = k.back().eye, c.lookat = k.back().lookat, c.fovy_deg = k.back().fovy_deg;
-        } else {
-            size_t i = 0;
-            while (time >= k[i + 1].time) ++i;
-            const float t = (time - k[i].time) / (k[i + 1].time - k[i].time);
-            const CameraKey& p0 = k[i == 0 ? 0 : i - 1];
-            const CameraKey& p1 = k[i];
-            const CameraKey& p2 = k[i + 1];
-            const CameraKey& p3 = k[std::min(i + 2, k.size() - 1)];
-            // Uniform Catmull-Rom: 0.5 (2 p1 + (p2 - p0) t + (2p0 - 5p1 + 4p2 - p3) t^2 + (3p1 - p0 - 3p2 + p3) t^3).
-            const auto cr = [t](auto a, auto b, auto cc, auto d) {
-                return 0.5f * (2.0f * b + (cc - a) * t + (2.0f * a - 5.0f * b + 4.0f * cc - d) * t * t +
-                               (3.0f * b - a - 3.0f * cc + d) * t * t * t);
-            };
-            c.eye = cr(p0.eye, p1.eye, p2.eye, p3.eye);
-            c.lookat = cr(p0.lookat, p1.lookat, p2.lookat, p3.lookat);
-            c.fovy_deg = cr(p0.fovy_deg, p1.fovy_deg, p2.fovy_deg, p3.fovy_deg);
-        }
-    }
-    if (spec.orbit != 0.0f) {
-        const glm::quat q = glm::angleAxis(spec.orbit * time, glm::vec3(0.0f, 1.0f, 0.0f));
-        c.eye = c.lookat + q * (c.eye - c.lookat);
-    }
-    return c;
-}
-
-void AnimatedScene::set_time(float time, float aspect) {
-    scene.camera = camera_at(spec.camera, time, aspect);
-    scene.animate(time);
-}
-
-AnimatedScene still_scene(Scene scene) {
-    AnimatedScene out;
-    out.spec.camera.camera = scene.camera;
-    out.scene = std::move(scene);
-    return out;
-}
-
-AnimatedScene build_scene(SceneSpec spec) {
-    AnimatedScene out;
-    Scene& scene = out.scene;
+render::AnimatedScene build_scene(const SceneSpec& spec) {
+    render::AnimatedScene out;
+    scene::Scene& scene = out.scene;
     scene.lights = spec.lights;
     scene.background = spec.background;
     scene.camera = spec.camera.camera;
@@ -195,7 +149,7 @@ AnimatedScene build_scene(SceneSpec spec) {
         scene.textures.push_back(build_texture(t, spec.file));
     }
     for (const MaterialSpec& m : spec.materials) {
-        Material material = m.material;
+        scene::Material material = m.material;
         if (!m.diffuse_texture.empty()) material.diffuse_texture = texture_index.at(m.diffuse_texture);
         if (!m.normal_texture.empty()) material.normal_texture = texture_index.at(m.normal_texture);
         scene.materials.push_back(material);
@@ -204,33 +158,33 @@ AnimatedScene build_scene(SceneSpec spec) {
     std::map<std::string, std::shared_ptr<const Ground>> grounds;
     for (const ObjectSpec& o : spec.objects) {
         if (o.shape == ObjectSpec::Shape::snake) continue;  // after every ground exists
-        Object object{o.name, nullptr, material_index(spec, o.material), o.transform, {}};
+        scene::Object object{o.name, nullptr, material_index(spec, o.material), o.transform, {}};
         const glm::ivec2 g = o.tessellation;
         switch (o.shape) {
             case ObjectSpec::Shape::sphere:
-                object.geometry = std::make_shared<const Mesh>(tessellate(sphere_surface(o.centre, o.radius), g.x, g.y));
+                object.geometry = std::make_shared<const Mesh>(geometry::tessellate(geometry::sphere_surface(o.centre, o.radius), g.x, g.y));
                 break;
             case ObjectSpec::Shape::ellipsoid:
-                object.geometry = std::make_shared<const Mesh>(tessellate(ellipsoid_surface(o.centre, o.radii), g.x, g.y));
+                object.geometry = std::make_shared<const Mesh>(geometry::tessellate(geometry::ellipsoid_surface(o.centre, o.radii), g.x, g.y));
                 break;
             case ObjectSpec::Shape::torus:
-                object.geometry = std::make_shared<const Mesh>(tessellate(torus_surface(o.major, o.minor), g.x, g.y));
+                object.geometry = std::make_shared<const Mesh>(geometry::tessellate(geometry::torus_surface(o.major, o.minor), g.x, g.y));
                 break;
             case ObjectSpec::Shape::flag: {
                 const ObjectSpec flag = o;
-                object.geometry = std::make_shared<const Mesh>(tessellate(
-                    flag_surface(o.flag_size.x, o.flag_size.y, o.flag_depth, o.flag_waves, 0.0f), g.x, g.y));
+                object.geometry = std::make_shared<const Mesh>(geometry::tessellate(
+                    geometry::flag_surface(o.flag_size.x, o.flag_size.y, o.flag_depth, o.flag_waves, 0.0f), g.x, g.y));
                 if (o.wave_speed != 0.0f)
-                    object.animate = [flag](Object& self, float time) {
-                        self.geometry = std::make_shared<const Mesh>(tessellate(
-                            flag_surface(flag.flag_size.x, flag.flag_size.y, flag.flag_depth, flag.flag_waves,
+                    object.animate = [flag](scene::Object& self, float time) {
+                        self.geometry = std::make_shared<const Mesh>(geometry::tessellate(
+                            geometry::flag_surface(flag.flag_size.x, flag.flag_size.y, flag.flag_depth, flag.flag_waves,
                                          flag.wave_speed * time),
                             flag.tessellation.x, flag.tessellation.y));
                     };
                 break;
             }
             case ObjectSpec::Shape::box:
-                object.geometry = std::make_shared<const Mesh>(box_mesh(0.5f * o.box_size));
+                object.geometry = std::make_shared<const Mesh>(geometry::box_mesh(0.5f * o.box_size));
                 break;
             case ObjectSpec::Shape::heightfield: {
                 auto ground = std::make_shared<Ground>();
@@ -238,11 +192,11 @@ AnimatedScene build_scene(SceneSpec spec) {
                 ground->offset = o.transform.translation;
                 ground->heights = tp::generate_heightfield(o.heightfield.samples.x, o.heightfield.samples.y,
                                                            o.heightfield.relief);
-                object.geometry = std::make_shared<const Mesh>(tessellate(
-                    heightfield_surface(ground->heights.values, ground->heights.width, ground->heights.height,
+                object.geometry = std::make_shared<const Mesh>(geometry::tessellate(
+                    geometry::heightfield_surface(ground->heights.values, ground->heights.width, ground->heights.height,
                                         o.heightfield.size, o.heightfield.height),
                     ground->heights.width - 1, ground->heights.height - 1));
-                object.transform = Transform{};  // snakes sample the ground by translation only
+                object.transform = scene::Transform{};  // snakes sample the ground by translation only
                 object.transform.translation = o.transform.translation;
                 grounds[o.name] = ground;
                 break;
@@ -250,7 +204,7 @@ AnimatedScene build_scene(SceneSpec spec) {
             case ObjectSpec::Shape::mesh: {
                 const std::filesystem::path path = o.file.is_absolute() ? o.file : spec.file.parent_path() / o.file;
                 try {
-                    object.geometry = std::make_shared<const Mesh>(load_obj(path));
+                    object.geometry = std::make_shared<const Mesh>(io::load_obj(path));
                 } catch (const Error& e) {
                     throw SceneFileError(spec.file.string() + ": object '" + o.name + "': " + e.what());
                 }
@@ -259,11 +213,11 @@ AnimatedScene build_scene(SceneSpec spec) {
             case ObjectSpec::Shape::snake: break;
         }
         if (o.spin != 0.0f) {
-            const Transform base = o.transform;
+            const scene::Transform base = o.transform;
             const glm::vec3 axis = o.spin_axis;
             const float spin = o.spin;
             auto inner = object.animate;
-            object.animate = [base, axis, spin, inner](Object& self, float time) {
+            object.animate = [base, axis, spin, inner](scene::Object& self, float time) {
                 if (inner) inner(self, time);
                 self.transform = spun(base, axis, spin, time);
             };
@@ -274,9 +228,10 @@ AnimatedScene build_scene(SceneSpec spec) {
         if (o.shape == ObjectSpec::Shape::snake)
             add_snake(scene, spec, o, o.snake.ground.empty() ? nullptr : grounds.at(o.snake.ground));
 
-    out.spec = std::move(spec);
+    out.camera = spec.camera;
+    out.passes = spec.passes;
     scene.validate();
     return out;
 }
 
-}  // namespace tessera
+}  // namespace tessera::scene_file

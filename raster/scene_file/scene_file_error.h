@@ -5,9 +5,9 @@
 #pragma once
 #include <string>
 
-#include "raster/error.h"
+#include "raster/core/error.h"
 
-namespace tessera {
+namespace tessera::scene_file {
 
 // Keys and strings come from the file, so they may hold newlines or other control bytes;
 // every diagnostic is one line (the command's contract), so those are shown escaped.
@@ -33,4 +33,4 @@ struct SceneFileError : Error {
     explicit SceneFileError(const std::string& message) : Error(one_line_diagnostic(message)) {}
 };
 
-}  // namespace tessera
+}  // namespace tessera::scene_file

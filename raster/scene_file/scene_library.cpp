@@ -5,7 +5,7 @@
 #include <set>
 #include <stdexcept>
 
-namespace tessera {
+namespace tessera::scene_file {
 
 namespace fs = std::filesystem;
 
@@ -57,4 +57,4 @@ fs::path find_scene(const std::string& name, const std::vector<fs::path>& direct
                                 "; or give a FILE.json)");
 }
 
-}  // namespace tessera
+}  // namespace tessera::scene_file

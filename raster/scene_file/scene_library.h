@@ -8,7 +8,7 @@
 #include <string>
 #include <vector>
 
-namespace tessera {
+namespace tessera::scene_file {
 
 // The directories above that exist, in search order, without duplicates.
 std::vector<std::filesystem::path> scene_directories(const std::filesystem::path& built_in,
@@ -22,4 +22,4 @@ std::vector<std::string> available_scenes(const std::vector<std::filesystem::pat
 std::filesystem::path find_scene(const std::string& name_or_path,
                                  const std::vector<std::filesystem::path>& directories);
 
-}  // namespace tessera
+}  // namespace tessera::scene_file

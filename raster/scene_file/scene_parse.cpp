@@ -8,7 +8,7 @@
 #include "procedural/rd_presets.h"
 #include "raster/scene_file/json_reader.h"
 
-namespace tessera {
+namespace tessera::scene_file {
 namespace {
 
 using scene_file::JsonNode;
@@ -55,15 +55,15 @@ Camera parse_camera_pose(const JsonNode& n, Camera c) {
     return c;
 }
 
-CameraSpec parse_camera(const JsonNode& n) {
+render::CameraSpec parse_camera(const JsonNode& n) {
     n.expect_object();
-    CameraSpec spec;
+    render::CameraSpec spec;
     spec.camera = parse_camera_pose(n, spec.camera);
     spec.orbit = glm::radians(n.number("orbit", 0.0f));  // degrees per second
     if (const auto keys = n.find("keyframes")) {
         for (const JsonNode& k : keys->elements()) {
             k.expect_object();
-            CameraKey key;
+            render::CameraKey key;
             key.time = k.at("time").as_number();
             key.eye = k.vec3("eye", spec.camera.eye);
             key.lookat = k.vec3("lookat", spec.camera.lookat);
@@ -78,15 +78,15 @@ CameraSpec parse_camera(const JsonNode& n) {
     return spec;
 }
 
-Background parse_background(const JsonNode& n) {
+scene::Background parse_background(const JsonNode& n) {
     n.expect_object();
-    Background b;
+    scene::Background b;
     const std::string type = n.string("type", "colour");
     if (type == "colour") {
-        b.kind = Background::Kind::colour;
+        b.kind = scene::Background::Kind::colour;
         b.colour = n.vec3("colour", b.colour);
     } else if (type == "sky") {
-        b.kind = Background::Kind::sky;
+        b.kind = scene::Background::Kind::sky;
         b.sky.zenith = n.vec3("zenith", b.sky.zenith);
         b.sky.horizon = n.vec3("horizon", b.sky.horizon);
         b.sky.ground = n.vec3("ground", b.sky.ground);
@@ -99,9 +99,9 @@ Background parse_background(const JsonNode& n) {
     return b;
 }
 
-Light parse_light(const JsonNode& n) {
+scene::Light parse_light(const JsonNode& n) {
     n.expect_object();
-    Light light;
+    scene::Light light;
     if (n.has("position") == n.has("direction"))
         n.fail("a light needs exactly one of 'position' (point light) or 'direction' (towards a distant light)");
     if (n.has("position")) light.position = glm::vec4(n.vec3("position", {}), 1.0f);
@@ -159,8 +159,8 @@ TextureSpec parse_texture(const std::string& name, const JsonNode& n) {
         t.kind = TextureSpec::Kind::file;
         t.file = n.at("file").as_string();
         const std::string enc = n.string("encoding", "srgb");
-        if (enc == "srgb") t.encoding = TexelEncoding::srgb;
-        else if (enc == "linear") t.encoding = TexelEncoding::linear;
+        if (enc == "srgb") t.encoding = texture::TexelEncoding::srgb;
+        else if (enc == "linear") t.encoding = texture::TexelEncoding::linear;
         else n.at("encoding").fail("expected srgb or linear");
     } else if (type == "reaction_diffusion") {
         t.kind = TextureSpec::Kind::reaction_diffusion;
@@ -202,7 +202,7 @@ MaterialSpec parse_material(const std::string& name, const JsonNode& n) {
     m.name = name;
     // Each parameter's JSON type is checked here (so the error names its path); the values'
     // meaning and whether the model uses them is set_material_parameters' business.
-    std::vector<MaterialParameter> params;
+    std::vector<scene::MaterialParameter> params;
     for (const char* key : {"ka", "kd", "ks"})
         if (const auto v = n.find(key)) params.push_back({key, [&] { const glm::vec3 c = v->as_vec3(); return std::vector<float>{c.x, c.y, c.z}; }(), {}});
     for (const char* key : {"shine", "opacity"})
@@ -216,19 +216,19 @@ MaterialSpec parse_material(const std::string& name, const JsonNode& n) {
     m.diffuse_texture = n.string("diffuse_texture", "");
     m.normal_texture = n.string("normal_texture", "");
     try {
-        for (const std::string& w : set_material_parameters(m.material, params)) n.warn(w);
+        for (const std::string& w : scene::set_material_parameters(m.material, params)) n.warn(w);
     } catch (const std::invalid_argument& e) {
         n.fail(e.what());
     }
-    if (!m.normal_texture.empty() && (m.material.model == ShadingModel::gouraud || m.material.model == ShadingModel::flat))
+    if (!m.normal_texture.empty() && (m.material.model == scene::ShadingModel::gouraud || m.material.model == scene::ShadingModel::flat))
         n.warn("'normal_texture' is not used by the " + std::string(to_string(m.material.model)) + " model; ignored");
     n.finish();
     return m;
 }
 
-Transform parse_transform(const JsonNode& n) {
+scene::Transform parse_transform(const JsonNode& n) {
     n.expect_object();
-    Transform t;
+    scene::Transform t;
     if (const auto s = n.find("scale")) {
         if (s->raw().is_number()) t.scale = glm::vec3(s->as_number());
         else t.scale = s->as_vec3();
@@ -354,12 +354,12 @@ march::MarchSettings parse_march(const JsonNode& n, march::MarchSettings s) {
     return s;
 }
 
-PassSpec parse_pass(const JsonNode& n) {
+render::PassSpec parse_pass(const JsonNode& n) {
     n.expect_object();
-    PassSpec p;
+    render::PassSpec p;
     const std::string type = n.at("type").as_string();
     if (type == "terrain") {
-        p.kind = PassSpec::Kind::terrain;
+        p.kind = render::PassSpec::Kind::terrain;
         procedural::TerrainParams& t = p.terrain;
         t.relief = parse_relief(n, "relief");
         t.fractal.octaves = at_least(n, "octaves", t.fractal.octaves, 1, 24);
@@ -373,7 +373,7 @@ PassSpec parse_pass(const JsonNode& n) {
         p.settings = parse_march(n, p.settings);
         if (const auto m = n.find("material")) p.material = parse_surface_material(*m, p.material);
     } else if (type == "metaballs") {
-        p.kind = PassSpec::Kind::metaballs;
+        p.kind = render::PassSpec::Kind::metaballs;
         p.count = at_least(n, "count", p.count, 1, 4096);
         p.ball_radius = positive(n, "radius", p.ball_radius);
         p.orbit_scale = positive(n, "orbit_scale", p.orbit_scale);
@@ -387,7 +387,7 @@ PassSpec parse_pass(const JsonNode& n) {
         p.settings = parse_march(n, p.settings);
         if (const auto m = n.find("material")) p.material = parse_surface_material(*m, p.material);
     } else if (type == "fog") {
-        p.kind = PassSpec::Kind::fog;
+        p.kind = render::PassSpec::Kind::fog;
         p.fog.density = n.vec3("density", p.fog.density);
         p.fog.colour = n.vec3("colour", p.fog.colour);
         p.fog.falloff = n.number("falloff", p.fog.falloff);
@@ -541,4 +541,4 @@ SceneSpec load_scene_file(const std::filesystem::path& path, std::vector<std::st
     return spec;
 }
 
-}  // namespace tessera
+}  // namespace tessera::scene_file

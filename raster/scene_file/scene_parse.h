@@ -13,7 +13,7 @@
 #include "raster/scene_file/scene_file_error.h"
 #include "raster/scene_file/scene_spec.h"
 
-namespace tessera {
+namespace tessera::scene_file {
 
 // `label` names the source in messages (the path as the user wrote it).
 SceneSpec parse_scene(const std::string& json_text, const std::string& label,
@@ -21,4 +21,4 @@ SceneSpec parse_scene(const std::string& json_text, const std::string& label,
 
 SceneSpec load_scene_file(const std::filesystem::path& path, std::vector<std::string>& warnings);
 
-}  // namespace tessera
+}  // namespace tessera::scene_file

@@ -12,33 +12,15 @@
 
 #include "procedural/heightfield.h"
 #include "procedural/rd_color.h"
-#include "raster/camera.h"
-#include "raster/march/fog.h"
-#include "raster/march/march_settings.h"
-#include "raster/march/metaball_field.h"
-#include "raster/march/surface_shading.h"
+#include "raster/geometry/snake.h"
+#include "raster/render/animated_scene.h"
 #include "raster/scene/light.h"
 #include "raster/scene/material.h"
 #include "raster/scene/transform.h"
-#include "raster/shade/background.h"
+#include "raster/scene/background.h"
 #include "raster/texture/texture.h"
 
-namespace tessera {
-
-// A camera pose at a time; between keys eye, lookat and fov follow a Catmull-Rom spline
-// (C1, passes through every key), before the first and after the last they hold.
-struct CameraKey {
-    float time = 0.0f;  // seconds
-    glm::vec3 eye{0.0f, 0.0f, 3.0f};
-    glm::vec3 lookat{0.0f};
-    float fovy_deg = 60.0f;
-};
-
-struct CameraSpec {
-    Camera camera;               // the pose without keys; up, near, far always from here
-    std::vector<CameraKey> keys;  // sorted by time, strictly increasing
-    float orbit = 0.0f;          // rad/s: the eye circles the lookat point about +y
-};
+namespace tessera::scene_file {
 
 struct TextureSpec {
     enum class Kind { file, reaction_diffusion, relief_normals };
@@ -46,7 +28,7 @@ struct TextureSpec {
     Kind kind = Kind::file;
     // file
     std::filesystem::path file;  // relative paths are resolved against the scene file
-    TexelEncoding encoding = TexelEncoding::srgb;
+    texture::TexelEncoding encoding = texture::TexelEncoding::srgb;
     // reaction_diffusion: Gray-Scott from a preset, grown for `steps`, through `ramp`
     std::string preset = "spots";
     int size = 256;  // texels, square
@@ -65,7 +47,7 @@ struct TextureSpec {
 
 struct MaterialSpec {
     std::string name;
-    Material material;             // parameters already applied (set_material_parameters)
+    scene::Material material;             // parameters already applied (set_material_parameters)
     std::string diffuse_texture;   // TextureSpec names; empty: none
     std::string normal_texture;
 };
@@ -77,26 +59,9 @@ struct HeightfieldSpec {
     float height = 1.0f;           // world height of relief value 1
 };
 
-// A snake of the seeds/000 homework. Its spine's control points ride a closed path (an
-// ellipse around `centre`, turned by `path_angle`) at `speed` rad/s, spaced along it so the
-// body spans `length`, and each sways sideways on its own closed curve: a sine of period
-// wiggle_period * (1 + period_spread * i) and phase -wave_phase * i (a wave running from head
-// to tail whose control points drift in and out of step: the writhing).
-struct SnakeSpec {
-    glm::vec2 centre{0.0f};
-    glm::vec2 path_radii{2.0f, 1.5f};
-    float path_angle = 0.0f;  // radians about +y
-    float phase = 0.0f;       // the head's start angle on the path
-    float speed = 0.25f;      // rad/s; negative: clockwise
-    float length = 3.0f;
-    float width = 0.12f;         // the body's largest horizontal semi-axis
-    float height_ratio = 0.7f;   // vertical / horizontal semi-axis
-    int control_points = 10;
-    float wiggle = 0.22f;        // sideways sway amplitude
-    float wiggle_period = 1.7f;  // seconds
-    float period_spread = 0.11f;
-    float wave_phase = 0.9f;     // radians per control point
-    glm::ivec2 tessellation{192, 20};  // along the body, around it
+// A snake: its shape and motion (geometry/snake.h), the heightfield object it lies on and the
+// material of its eyes.
+struct SnakeSpec : geometry::SnakeShape {
     std::string ground;        // a heightfield object to lie on; empty: the plane y = transform.translate.y
     std::string eye_material;  // empty: the body's
 };
@@ -106,7 +71,7 @@ struct ObjectSpec {
     std::string name;
     Shape shape = Shape::sphere;
     std::string material;
-    Transform transform;
+    scene::Transform transform;
     glm::vec3 spin_axis{0.0f, 1.0f, 0.0f};
     float spin = 0.0f;  // rad/s about spin_axis, after the transform's own rotation
     glm::ivec2 tessellation{48, 24};
@@ -127,23 +92,6 @@ struct ObjectSpec {
     std::filesystem::path file;
 };
 
-// Ray-marched compute passes (seeds/003), run per tile after rasterization in list order.
-struct PassSpec {
-    enum class Kind { terrain, metaballs, fog };
-    Kind kind = Kind::terrain;
-    // terrain: f = h(p.xz) - p.y with h from procedural/ (heightfield relief), marched
-    procedural::TerrainParams terrain;
-    // metaballs: `count` balls on Lissajous orbits (metaball_orbits.h), scaled and moved
-    int count = 5;
-    float ball_radius = 1.0f;
-    float orbit_scale = 1.0f;
-    glm::vec3 offset{0.0f};
-    march::MetaballStyle style;
-    march::MarchSettings settings;
-    march::SurfaceMaterial material;
-    march::Fog fog;  // fog
-};
-
 struct AnimationSpec {
     float fps = 24.0f;
     int first = 1, last = 48;  // the default --frames
@@ -152,16 +100,16 @@ struct AnimationSpec {
 struct SceneSpec {
     std::filesystem::path file;  // where it was read from (relative paths resolve against it)
     std::string description;
-    CameraSpec camera;
-    Background background;
-    std::vector<Light> lights;
+    render::CameraSpec camera;
+    scene::Background background;
+    std::vector<scene::Light> lights;
     std::vector<TextureSpec> textures;
     std::vector<MaterialSpec> materials;
     std::vector<ObjectSpec> objects;
-    std::vector<PassSpec> passes;
+    std::vector<render::PassSpec> passes;
     AnimationSpec animation;
     glm::ivec2 size{1280, 720};   // the default --size
     std::string shadows = "none";  // the default --shadows
 };
 
-}  // namespace tessera
+}  // namespace tessera::scene_file

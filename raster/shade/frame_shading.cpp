@@ -7,23 +7,23 @@
 #include <stdexcept>
 #include <string>
 
-#include "raster/barycentrics.h"
-#include "raster/shade/background.h"
+#include "raster/pipeline/barycentrics.h"
+#include "raster/shade/background_radiance.h"
 #include "raster/shade/shade_kernel.h"
 
-namespace tessera {
+namespace tessera::shade {
 namespace {
 
 using shade::kLanes;
 using shade::Lanes;
 
-const Texture* texture_of(const Scene& scene, int32_t index) {
-    return index == kNoTexture ? nullptr : &scene.textures[size_t(index)];
+const texture::Texture* texture_of(const scene::Scene& scene, int32_t index) {
+    return index == scene::kNoTexture ? nullptr : &scene.textures[size_t(index)];
 }
 
 }  // namespace
 
-FrameShading::FrameShading(const BakedScene& baked, const Scene& scene, RenderState state)
+FrameShading::FrameShading(const scene::BakedScene& baked, const scene::Scene& scene, RenderState state)
     : baked_(baked), scene_(scene), state_(std::move(state)), eye_(state_.camera.eye) {
     if (state_.width <= 0 || state_.height <= 0)
         throw std::invalid_argument("shading needs a positive frame size");
@@ -59,7 +59,7 @@ FrameShading::FrameShading(const BakedScene& baked, const Scene& scene, RenderSt
     const glm::mat4 vp = camera.projection() * view;
     clip_.resize(mesh.vertex_count());
     bool any_gouraud = false;
-    for (const Material& m : scene_.materials) any_gouraud |= m.model == ShadingModel::gouraud;
+    for (const scene::Material& m : scene_.materials) any_gouraud |= m.model == scene::ShadingModel::gouraud;
     if (any_gouraud) gouraud_.assign(mesh.vertex_count(), glm::vec3(0.0f));
 
     tbb::parallel_for(tbb::blocked_range<size_t>(0, mesh.vertex_count(), 8192),
@@ -68,10 +68,10 @@ FrameShading::FrameShading(const BakedScene& baked, const Scene& scene, RenderSt
             const glm::vec4 c = vp * glm::vec4(mesh.positions[i], 1.0f);
             clip_[i] = c;
             if (!any_gouraud) continue;
-            const Material& m = scene_.materials[baked_.vertex_material[i]];
-            if (m.model != ShadingModel::gouraud) continue;
+            const scene::Material& m = scene_.materials[baked_.vertex_material[i]];
+            if (m.model != scene::ShadingModel::gouraud) continue;
             // The seed's per-vertex shader: Blinn-Phong with the vertex normal.
-            using V = shade::V3<float>;
+            using V = simd::V3<float>;
             const glm::vec3 pw = mesh.positions[i];
             const V p{pw.x, pw.y, pw.z};
             const V to_eye = normalize_or(V{eye_.x, eye_.y, eye_.z} - p, V{0.0f, 0.0f, 1.0f});
@@ -125,22 +125,22 @@ void FrameShading::shade_with(std::span<const CoveredPixel> pixels, std::span<gl
     ctx.eye = eye_;
     Lanes lanes;
     for (size_t mat = 0; mat < material_count; ++mat) {
-        const Material& material = scene_.materials[mat];
+        const scene::Material& material = scene_.materials[mat];
         ctx.material = &material;
         ctx.diffuse = texture_of(scene_, material.diffuse_texture);
-        ctx.normal = material.model == ShadingModel::gouraud ? nullptr : texture_of(scene_, material.normal_texture);
+        ctx.normal = material.model == scene::ShadingModel::gouraud ? nullptr : texture_of(scene_, material.normal_texture);
         const bool needs_uv = ctx.diffuse || ctx.normal;
-        const bool needs_colour = material.model == ShadingModel::gouraud;
+        const bool needs_colour = material.model == scene::ShadingModel::gouraud;
         for (size_t start = count[mat]; start < count[mat + 1]; start += kLanes) {
             const int n = int(std::min<size_t>(kLanes, count[mat + 1] - start));
             uint32_t setup_for = kNoTriangle;  // consecutive pixels often share a triangle
-            PerspectiveBarycentrics setup{};
+            pipeline::PerspectiveBarycentrics setup{};
             for (int lane = 0; lane < kLanes; ++lane) {
                 // Idle lanes repeat the first pixel so every lane computes finite values.
                 const CoveredPixel& f = pixels[order[start + size_t(lane < n ? lane : 0)]];
                 const uint32_t* corner = &mesh.indices[3 * size_t(f.triangle)];
                 if (f.triangle != setup_for) {
-                    setup = PerspectiveBarycentrics::from_clip(clip_[corner[0]], clip_[corner[1]],
+                    setup = pipeline::PerspectiveBarycentrics::from_clip(clip_[corner[0]], clip_[corner[1]],
                                                                clip_[corner[2]], state_.width, state_.height);
                     setup_for = f.triangle;
                 }
@@ -244,4 +244,4 @@ Frame shade_visibility(const FrameShading& shading, const VisibilityBuffer& visi
     return frame;
 }
 
-}  // namespace tessera
+}  // namespace tessera::shade

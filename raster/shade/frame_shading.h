@@ -19,19 +19,19 @@
 #include <span>
 #include <vector>
 
-#include "raster/camera.h"
-#include "raster/output/frame.h"
+#include "raster/core/camera.h"
+#include "raster/core/frame.h"
 #include "raster/scene/scene.h"
-#include "raster/visibility.h"
+#include "raster/core/visibility.h"
 
-namespace tessera {
+namespace tessera::shade {
 
 // The seed's RenderState: what every shader of the frame reads, passed by value.
 struct RenderState {
     Camera camera;
     int width = 0;   // pixels
     int height = 0;
-    std::vector<Light> lights;
+    std::vector<scene::Light> lights;
 };
 
 // One covered pixel to shade: pixel (x, y), rows top to bottom, and the id of the triangle
@@ -48,7 +48,7 @@ public:
     // Gouraud colours of vertices whose material is Gouraud. `baked` and `scene` must outlive
     // this object. Throws std::invalid_argument for a non-positive size or a bake that does
     // not match the scene's materials.
-    FrameShading(const BakedScene& baked, const Scene& scene, RenderState state);
+    FrameShading(const scene::BakedScene& baked, const scene::Scene& scene, RenderState state);
 
     // Linear RGBA of each pixel (alpha = material opacity x diffuse texture alpha), in any
     // mix of triangles and materials; out.size() must equal pixels.size(). A pixel
@@ -67,8 +67,8 @@ private:
     template <class F>
     void shade_with(std::span<const CoveredPixel> pixels, std::span<glm::vec4> out) const;
 
-    const BakedScene& baked_;
-    const Scene& scene_;
+    const scene::BakedScene& baked_;
+    const scene::Scene& scene_;
     RenderState state_;
     glm::vec3 eye_;
     glm::vec3 ray_x_, ray_y_, ray_z_;   // pixel ray = ray_x * x_ndc + ray_y * y_ndc + ray_z
@@ -108,4 +108,4 @@ void blend_fragments(const FrameShading& shading, std::span<const CoveredPixel> 
 // produces a VisibilityBuffer (the Embree ray caster, the tests) gets its picture.
 Frame shade_visibility(const FrameShading& shading, const VisibilityBuffer& visibility);
 
-}  // namespace tessera
+}  // namespace tessera::shade

@@ -6,9 +6,12 @@
 #include <span>
 
 #include "raster/scene/light.h"
-#include "raster/shade/shade_math.h"
+#include "raster/simd/lane_math.h"
 
 namespace tessera::shade {
+
+// Written once in the lane arithmetic of simd/lane_math.h, for float and simd::vfloat.
+using namespace simd;
 
 template <class F>
 V3<F> broadcast(glm::vec3 v) {
@@ -17,7 +20,7 @@ V3<F> broadcast(glm::vec3 v) {
 
 // Unit vector from surface point p towards the light: the seed's wLiPos.xyz - p * wLiPos.w.
 template <class F>
-V3<F> light_direction(const Light& light, V3<F> p, V3<F> fallback) {
+V3<F> light_direction(const scene::Light& light, V3<F> p, V3<F> fallback) {
     const V3<F> to = broadcast<F>(glm::vec3(light.position)) - p * F(light.position.w);
     return normalize_or(to, fallback);
 }
@@ -26,10 +29,10 @@ V3<F> light_direction(const Light& light, V3<F> p, V3<F> fallback) {
 //     L = ka*La + (kd*cos(theta) + ks*cos(delta)^shine) * Le,
 // cos(theta) = max(N.L, 0), cos(delta) = max(N.H, 0), H = |L + V|.
 template <class F>
-V3<F> blinn_phong(std::span<const Light> lights, V3<F> p, V3<F> n, V3<F> v, V3<F> ka, V3<F> kd,
+V3<F> blinn_phong(std::span<const scene::Light> lights, V3<F> p, V3<F> n, V3<F> v, V3<F> ka, V3<F> kd,
                   V3<F> ks, F shine) {
     V3<F> sum{F(0.0f), F(0.0f), F(0.0f)};
-    for (const Light& light : lights) {
+    for (const scene::Light& light : lights) {
         const V3<F> l = light_direction<F>(light, p, n);
         const V3<F> h = normalize_or(l + v, n);
         const F cost = max(dot(n, l), F(0.0f));
@@ -45,9 +48,9 @@ V3<F> blinn_phong(std::span<const Light> lights, V3<F> p, V3<F> n, V3<F> v, V3<F
 // |dot(N, V)| < 0.2 (the silhouette). With several lights the levels add, weighted by Le
 // (one white light gives the seed's picture exactly).
 template <class F>
-V3<F> toon(std::span<const Light> lights, V3<F> p, V3<F> n, V3<F> v, V3<F> kd) {
+V3<F> toon(std::span<const scene::Light> lights, V3<F> p, V3<F> n, V3<F> v, V3<F> kd) {
     V3<F> sum{F(0.0f), F(0.0f), F(0.0f)};
-    for (const Light& light : lights) {
+    for (const scene::Light& light : lights) {
         const V3<F> l = light_direction<F>(light, p, n);
         const F y = select(F(0.5f) < dot(n, l), F(1.0f), F(0.5f));
         sum = sum + kd * broadcast<F>(light.Le) * y;

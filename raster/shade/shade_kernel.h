@@ -9,12 +9,15 @@
 #include "raster/scene/light.h"
 #include "raster/scene/material.h"
 #include "raster/shade/lighting.h"
-#include "raster/shade/shade_math.h"
+#include "raster/simd/lane_math.h"
 #include "raster/shade/tangent_frame.h"
 #include "raster/texture/sampler.h"
 #include "raster/texture/sampler_simd.h"
 
 namespace tessera::shade {
+
+// Written once in the lane arithmetic of simd/lane_math.h, for float and simd::vfloat.
+using namespace simd;
 
 inline constexpr int kLanes = simd::kLanes;
 
@@ -32,10 +35,10 @@ struct alignas(64) Lanes {
 
 // What the kernel reads besides the lanes: uniform over the batch.
 struct KernelContext {
-    const Material* material = nullptr;
-    const Texture* diffuse = nullptr;  // null: kd alone
-    const Texture* normal = nullptr;   // null: the interpolated normal
-    std::span<const Light> lights;
+    const scene::Material* material = nullptr;
+    const texture::Texture* diffuse = nullptr;  // null: kd alone
+    const texture::Texture* normal = nullptr;   // null: the interpolated normal
+    std::span<const scene::Light> lights;
     glm::vec3 eye{0.0f};
 };
 
@@ -62,12 +65,12 @@ struct Texel {
 
 // The reference path samples one pixel with sample(); the SIMD path gathers all lanes at once.
 template <class F>
-Texel<F> sample_texture(const Texture& texture, const Material& m, F u, F v, F du_dx, F dv_dx, F du_dy, F dv_dy) {
+Texel<F> sample_texture(const texture::Texture& texture, const scene::Material& m, F u, F v, F du_dx, F dv_dx, F du_dy, F dv_dy) {
     if constexpr (std::is_same_v<F, float>) {
-        const glm::vec4 t = sample(texture, {u, v}, {{du_dx, dv_dx}, {du_dy, dv_dy}}, m.filter, m.wrap);
+        const glm::vec4 t = texture::sample(texture, {u, v}, {{du_dx, dv_dx}, {du_dy, dv_dy}}, m.filter, m.wrap);
         return {t.r, t.g, t.b, t.a};
     } else {
-        const TexelLanes t = sample_lanes(texture, u, v, du_dx, dv_dx, du_dy, dv_dy, m.filter, m.wrap);
+        const texture::TexelLanes t = texture::sample_lanes(texture, u, v, du_dx, dv_dx, du_dy, dv_dy, m.filter, m.wrap);
         return {t.r, t.g, t.b, t.a};
     }
 }
@@ -75,7 +78,7 @@ Texel<F> sample_texture(const Texture& texture, const Material& m, F u, F v, F d
 template <class F>
 void shade_lanes(const KernelContext& ctx, Lanes& d, int lane) {
     using V = V3<F>;
-    const Material& m = *ctx.material;
+    const scene::Material& m = *ctx.material;
     const auto ld = [&](const float* a) { return lane_load<F>(a, lane); };
     const auto v3 = [&](const float (&a)[3][kLanes]) { return V{ld(a[0]), ld(a[1]), ld(a[2])}; };
     const F zero(0.0f), one(1.0f);
@@ -145,22 +148,22 @@ void shade_lanes(const KernelContext& ctx, Lanes& d, int lane) {
 
     V colour;
     switch (m.model) {
-        case ShadingModel::flat: {
+        case scene::ShadingModel::flat: {
             const V centroid = (p[0] + p[1] + p[2]) * F(1.0f / 3.0f);
             colour = blinn_phong<F>(ctx.lights, centroid, face, normalize_or(eye - centroid, face),
                                     broadcast<F>(m.ka), kd, broadcast<F>(m.ks), F(m.shine));
             break;
         }
-        case ShadingModel::gouraud: {
+        case scene::ShadingModel::gouraud: {
             const V g[3] = {v3(d.col[0]), v3(d.col[1]), v3(d.col[2])};
             colour = madd(g[0], b[0], madd(g[1], b[1], g[2] * b[2]));
             break;
         }
-        case ShadingModel::phong:
+        case scene::ShadingModel::phong:
             colour = blinn_phong<F>(ctx.lights, position, normal, view, broadcast<F>(m.ka), kd,
                                     broadcast<F>(m.ks), F(m.shine));
             break;
-        case ShadingModel::toon: colour = toon<F>(ctx.lights, position, normal, view, kd); break;
+        case scene::ShadingModel::toon: colour = toon<F>(ctx.lights, position, normal, view, kd); break;
     }
     lane_store(d.out[0], lane, colour.x);
     lane_store(d.out[1], lane, colour.y);

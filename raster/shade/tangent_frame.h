@@ -14,9 +14,12 @@
 // so (tgS, tgT, N) is orthonormal. A triangle with degenerate uv (det = 0) gets an arbitrary
 // frame around N instead of NaN.
 #pragma once
-#include "raster/shade/shade_math.h"
+#include "raster/simd/lane_math.h"
 
 namespace tessera::shade {
+
+// Written once in the lane arithmetic of simd/lane_math.h, for float and simd::vfloat.
+using namespace simd;
 
 template <class F>
 struct TangentFrame {

@@ -5,7 +5,7 @@
 #include <stdexcept>
 #include <string>
 
-#include "raster/embree/tiles.h"
+#include "raster/core/tile.h"
 
 namespace tessera::shadow {
 
@@ -18,7 +18,7 @@ LightMask compute_light_mask(const VisibilityBuffer& visibility, const Mesh& mes
     LightMask mask{visibility.width, visibility.height, {}};
     mask.bits.assign(size_t(mask.width) * size_t(mask.height), 0);
     if (mask.bits.empty()) return mask;
-    const rt::PixelRays rays(view_projection, visibility.width, visibility.height);
+    const PixelRays rays(view_projection, visibility.width, visibility.height);
     // Per-thread scratch: a 1080p frame has about 2000 tiles, each of which would otherwise
     // allocate its point lists anew.
     struct Scratch {
@@ -26,7 +26,7 @@ LightMask compute_light_mask(const VisibilityBuffer& visibility, const Mesh& mes
         std::vector<uint8_t> visible;
     };
     tbb::enumerable_thread_specific<Scratch> scratch;
-    rt::parallel_for_tiles(visibility.width, visibility.height, [&](const rt::ImageTile& tile) {
+    parallel_for_tiles(visibility.width, visibility.height, [&](const ImageTile& tile) {
         Scratch& local = scratch.local();
         SurfacePoints& points = local.points;
         std::vector<uint8_t>& visible = local.visible;

@@ -10,9 +10,9 @@
 #include <span>
 #include <vector>
 
-#include "raster/mesh.h"
+#include "raster/core/mesh.h"
 #include "raster/shadow/surface_points.h"
-#include "raster/visibility.h"
+#include "raster/core/visibility.h"
 
 namespace tessera::shadow {
 

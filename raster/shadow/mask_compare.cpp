@@ -3,7 +3,7 @@
 #include <stdexcept>
 #include <vector>
 
-#include "raster/image_io.h"
+#include "raster/io/image_io.h"
 
 namespace tessera::shadow {
 namespace {
@@ -68,7 +68,7 @@ void write_mask_diff(const std::filesystem::path& path, const LightMask& a, cons
             out[0] = out[1] = out[2] = a.bits[p] ? 235 : 90;
         }
     }
-    write_image(path, ImageView{visibility.width, visibility.height, 3, PixelType::u8, rgb.data()});
+    io::write_image(path, io::ImageView{visibility.width, visibility.height, 3, io::PixelType::u8, rgb.data()});
 }
 
 }  // namespace tessera::shadow

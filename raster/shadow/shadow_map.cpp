@@ -10,11 +10,11 @@
 #include <stdexcept>
 #include <string>
 
-#include "raster/camera.h"
+#include "raster/core/camera.h"
 #include "raster/simd/simd.h"
-#include "raster/vertex_stage.h"
-#include "raster/fixed_point.h"
-#include "raster/viewport.h"
+#include "raster/pipeline/vertex_stage.h"
+#include "raster/pipeline/fixed_point.h"
+#include "raster/pipeline/viewport.h"
 
 namespace tessera::shadow {
 namespace {
@@ -79,7 +79,7 @@ MapPoint<F> receiver_in_map(const glm::vec3& light, const glm::vec3& axis, const
     const F ry = py + ny * offset + ly * toward;
     const F rz = pz + nz * offset + lz * toward;
     F cx, cy, cz, cw;
-    clip_position(vp, rx, ry, rz, cx, cy, cz, cw);
+    pipeline::clip_position(vp, rx, ry, rz, cx, cy, cz, cw);
     const F inverse_w = F(1.0f) / cw;
     return {(cx * inverse_w * F(0.5f) + F(0.5f)) * F(size), (F(0.5f) - cy * inverse_w * F(0.5f)) * F(size),
             cz * inverse_w * F(0.5f) + F(0.5f), cw};
@@ -87,12 +87,12 @@ MapPoint<F> receiver_in_map(const glm::vec3& light, const glm::vec3& axis, const
 
 }  // namespace
 
-ShadowMap::ShadowMap(Rasterizer& rasterizer, const Mesh& mesh, const glm::vec3& light,
+ShadowMap::ShadowMap(pipeline::Rasterizer& rasterizer, const Mesh& mesh, const glm::vec3& light,
                      const ShadowMapOptions& options)
     : light_(light), options_(options) {
-    if (options.resolution < 16 || options.resolution > kMaxViewport)
+    if (options.resolution < 16 || options.resolution > pipeline::kMaxViewport)
         throw std::invalid_argument("shadow map resolution " + std::to_string(options.resolution) +
-                                    " is outside 16 .. " + std::to_string(kMaxViewport));
+                                    " is outside 16 .. " + std::to_string(pipeline::kMaxViewport));
     if (options.pcf_radius < 0 || options.pcf_radius > 8)
         throw std::invalid_argument("PCF radius " + std::to_string(options.pcf_radius) +
                                     " is outside 0 .. 8");
@@ -101,7 +101,7 @@ ShadowMap::ShadowMap(Rasterizer& rasterizer, const Mesh& mesh, const glm::vec3& 
     render(rasterizer, mesh, light);
 }
 
-void ShadowMap::render(Rasterizer& rasterizer, const Mesh& mesh, const glm::vec3& light) {
+void ShadowMap::render(pipeline::Rasterizer& rasterizer, const Mesh& mesh, const glm::vec3& light) {
     light_ = light;
     const Bounds bounds = mesh_bounds(mesh);
     const bool empty = !(bounds.lo.x <= bounds.hi.x);
@@ -124,10 +124,10 @@ void ShadowMap::render(Rasterizer& rasterizer, const Mesh& mesh, const glm::vec3
     view_projection_ = camera.view_projection();
     texel_per_depth_ =
         2.0f * std::tan(glm::radians(camera.fovy_deg) * 0.5f) / float(options_.resolution);
-    RasterOptions raster;
-    raster.cull = CullMode::none;  // both faces of a surface cast shadows
+    pipeline::RasterOptions raster;
+    raster.cull = pipeline::CullMode::none;  // both faces of a surface cast shadows
     raster.depth_only = true;
-    rasterizer.render(mesh, view_projection_, Viewport(options_.resolution, options_.resolution),
+    rasterizer.render(mesh, view_projection_, pipeline::Viewport(options_.resolution, options_.resolution),
                       raster, depth_);
 }
 

@@ -31,10 +31,10 @@
 #include <span>
 #include <vector>
 
-#include "raster/mesh.h"
-#include "raster/rasterizer.h"
+#include "raster/core/mesh.h"
+#include "raster/pipeline/rasterizer.h"
 #include "raster/shadow/light_mask.h"
-#include "raster/visibility.h"
+#include "raster/core/visibility.h"
 
 namespace tessera::shadow {
 
@@ -49,11 +49,11 @@ class ShadowMap {
 public:
     // Renders the depth of `mesh` as seen from `light`. Throws std::invalid_argument for a
     // resolution outside 16 .. kMaxViewport, a PCF radius outside 0 .. 8 or a negative bias.
-    ShadowMap(Rasterizer& rasterizer, const Mesh& mesh, const glm::vec3& light,
+    ShadowMap(pipeline::Rasterizer& rasterizer, const Mesh& mesh, const glm::vec3& light,
               const ShadowMapOptions& options = {});
 
     // Renders again (the next frame: the mesh or light moved), reusing the map's memory.
-    void render(Rasterizer& rasterizer, const Mesh& mesh, const glm::vec3& light);
+    void render(pipeline::Rasterizer& rasterizer, const Mesh& mesh, const glm::vec3& light);
 
     // Fraction of the PCF taps that see `position` (pushed off the surface along `normal`)
     // from the light.

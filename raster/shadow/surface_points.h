@@ -12,10 +12,10 @@
 #include <cstdint>
 #include <vector>
 
-#include "raster/embree/pixel_rays.h"
-#include "raster/embree/tiles.h"
-#include "raster/mesh.h"
-#include "raster/visibility.h"
+#include "raster/core/pixel_rays.h"
+#include "raster/core/tile.h"
+#include "raster/core/mesh.h"
+#include "raster/core/visibility.h"
 
 namespace tessera::shadow {
 
@@ -35,7 +35,7 @@ struct SurfacePoints {
 // Replaces `out` with the covered pixels of `tile`. Pixels whose triangle is degenerate or
 // has non-finite vertices (never produced by either renderer, but guarded) are left out.
 void gather_surface_points(const VisibilityBuffer& visibility, const Mesh& mesh,
-                           const rt::PixelRays& rays, const rt::ImageTile& tile,
+                           const PixelRays& rays, const ImageTile& tile,
                            SurfacePoints& out);
 
 // True when a light at `light` is on the camera's side of the surface at `position` (the

@@ -3,7 +3,7 @@
 #include <algorithm>
 #include <cmath>
 
-namespace tessera {
+namespace tessera::texture {
 namespace {
 
 // Repeat: coordinates arrive reduced to [0, 1) by safe_coordinate, so a texel index lies in
@@ -68,4 +68,4 @@ glm::vec4 sample(const Texture& texture, glm::vec2 uv, const UvDerivatives& deri
     return glm::mix(bilinear(texture.level(lower), uv, wrap), bilinear(texture.level(upper), uv, wrap), t);
 }
 
-}  // namespace tessera
+}  // namespace tessera::texture

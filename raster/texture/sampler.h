@@ -9,10 +9,17 @@
 #pragma once
 #include <glm/glm.hpp>
 
-#include "raster/scene/material.h"
+#include <cstdint>
+
 #include "raster/texture/texture.h"
 
-namespace tessera {
+namespace tessera::texture {
+
+// nearest and bilinear read the full-resolution level (GL_NEAREST, GL_LINEAR); mipmap reads
+// the nearest mip level bilinearly (GL_LINEAR_MIPMAP_NEAREST); trilinear blends the two
+// nearest levels (GL_LINEAR_MIPMAP_LINEAR).
+enum class TextureFilter : uint8_t { nearest, bilinear, mipmap, trilinear };
+enum class TextureWrap : uint8_t { repeat, clamp };
 
 // Derivatives of the texture coordinates with respect to window x and y (pixels).
 struct UvDerivatives {
@@ -30,4 +37,4 @@ float mip_lambda(const Texture& texture, const UvDerivatives& derivatives);
 glm::vec4 sample(const Texture& texture, glm::vec2 uv, const UvDerivatives& derivatives,
                  TextureFilter filter, TextureWrap wrap);
 
-}  // namespace tessera
+}  // namespace tessera::texture

@@ -4,13 +4,14 @@
 // scalar sample() is its reference (tests compare them); lambda's log2 is the polynomial of
 // shade_math.h, within 3e-7 of std::log2.
 #pragma once
-#include "raster/scene/material.h"
-#include "raster/shade/shade_math.h"
+#include "raster/simd/lane_math.h"
+#include "raster/texture/sampler.h"
 #include "raster/texture/texture.h"
 
-namespace tessera::shade {
+namespace tessera::texture {
 
-using simd::vint;
+// Written in the lane arithmetic of simd/lane_math.h.
+using namespace simd;
 
 struct TexelLanes {
     vfloat r, g, b, a;
@@ -99,4 +100,4 @@ inline TexelLanes sample_lanes(const Texture& texture, vfloat u, vfloat v, vfloa
                bilinear(texture, simd::round_to_int(upper), u, v, wrap), lambda - lower);
 }
 
-}  // namespace tessera::shade
+}  // namespace tessera::texture

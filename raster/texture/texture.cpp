@@ -7,9 +7,9 @@
 #include <stdexcept>
 #include <string>
 
-#include "raster/output/color_space.h"
+#include "raster/core/color_space.h"
 
-namespace tessera {
+namespace tessera::texture {
 namespace {
 
 // One tap of a 1-D box filter: source index and weight.
@@ -84,7 +84,7 @@ MipLevel Texture::level(int index) const {
             std::span<const glm::vec4>(texels_.data() + offsets_[k], size_t(widths_[k]) * size_t(heights_[k]))};
 }
 
-Texture Texture::from_image(const FloatImage& image, TexelEncoding encoding) {
+Texture Texture::from_image(const io::FloatImage& image, TexelEncoding encoding) {
     if (image.width <= 0 || image.height <= 0 || image.channels <= 0)
         throw std::invalid_argument("texture image is empty");
     std::vector<glm::vec4> texels(size_t(image.width) * size_t(image.height));
@@ -110,7 +110,7 @@ Texture Texture::from_image(const FloatImage& image, TexelEncoding encoding) {
 }
 
 Texture load_texture(const std::filesystem::path& path, TexelEncoding encoding) {
-    return Texture::from_image(read_image(path), encoding);
+    return Texture::from_image(io::read_image(path), encoding);
 }
 
-}  // namespace tessera
+}  // namespace tessera::texture

@@ -13,9 +13,9 @@
 #include <span>
 #include <vector>
 
-#include "raster/image_io.h"
+#include "raster/io/image_io.h"
 
-namespace tessera {
+namespace tessera::texture {
 
 // One level of the chain: a view into the texture's storage (valid while the texture lives).
 struct MipLevel {
@@ -40,7 +40,7 @@ public:
 
     // Converts an image read by read_image: 1 channel -> grey, 2 -> grey + alpha, 3 -> RGB,
     // 4 -> RGBA (more channels: the first four); rows flipped so that row 0 is the bottom.
-    static Texture from_image(const FloatImage& image, TexelEncoding encoding);
+    static Texture from_image(const io::FloatImage& image, TexelEncoding encoding);
 
     int width() const { return widths_.front(); }
     int height() const { return heights_.front(); }
@@ -63,4 +63,4 @@ private:
 // (a missing or unreadable texture is a clear error, never a crash).
 Texture load_texture(const std::filesystem::path& path, TexelEncoding encoding);
 
-}  // namespace tessera
+}  // namespace tessera::texture

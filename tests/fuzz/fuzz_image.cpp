@@ -21,10 +21,10 @@
 #include <sanitizer/lsan_interface.h>
 #endif
 
-#include "raster/error.h"
-#include "raster/image_io.h"
+#include "raster/core/error.h"
+#include "raster/io/image_io.h"
 #include "raster/texture/texture.h"
-#include "raster/visibility_io.h"
+#include "raster/io/visibility_io.h"
 #include "tests/fuzz/fuzz_target.h"
 
 namespace tessera::fuzz {
@@ -41,11 +41,11 @@ constexpr std::array<const char*, 8> kExtensions = {".png", ".pfm", ".tif", ".pp
 // destructor is jumped over). That is Debian's library, not tessera, so allocations made
 // while OpenImageIO decodes are not counted as leaks; everything after it (the texture and
 // its mip chain) still is.
-FloatImage read_image_outside_leak_check(const std::filesystem::path& path) {
+io::FloatImage read_image_outside_leak_check(const std::filesystem::path& path) {
 #ifdef TESSERA_HAVE_LSAN
     __lsan::ScopedDisabler not_ours;
 #endif
-    return read_image(path);
+    return io::read_image(path);
 }
 
 // A per-process scratch file (fuzzers and ctest may run in parallel).
@@ -54,16 +54,16 @@ std::filesystem::path scratch_file(const char* extension) {
            ("tessera_fuzz_image_" + std::to_string(getpid()) + extension);
 }
 
-std::string check_texture(const Texture& t) {
+std::string check_texture(const texture::Texture& t) {
     int w = t.width(), h = t.height();
     for (int k = 0; k < t.level_count(); ++k) {
-        const MipLevel& level = t.level(k);
+        const texture::MipLevel& level = t.level(k);
         if (level.width != w || level.height != h) return "mip level " + std::to_string(k) + " has the wrong size";
         if (level.texels.size() != size_t(w) * size_t(h)) return "mip level texel count is wrong";
         w = std::max(1, w / 2);
         h = std::max(1, h / 2);
     }
-    const MipLevel& last = t.level(t.level_count() - 1);
+    const texture::MipLevel& last = t.level(t.level_count() - 1);
     if (last.width != 1 || last.height != 1) return "mip chain does not end at 1x1";
     return "";
 }
@@ -81,14 +81,14 @@ std::string image_input(Bytes data) {
     std::string broken;
     try {
         if (std::string(extension) == ".tsid") {
-            const VisibilityBuffer v = read_tsid(path);
+            const VisibilityBuffer v = io::read_tsid(path);
             if (v.width < 1 || v.height < 1 || v.triangle.size() != size_t(v.width) * size_t(v.height))
                 broken = "TSID accepted with inconsistent size";
         } else {
             // load_texture(path, encoding), with the decoding outside the leak check.
-            const FloatImage image = read_image_outside_leak_check(path);
-            broken = check_texture(Texture::from_image(
-                image, data.size() > 1 && data[1] % 2 ? TexelEncoding::linear : TexelEncoding::srgb));
+            const io::FloatImage image = read_image_outside_leak_check(path);
+            broken = check_texture(texture::Texture::from_image(
+                image, data.size() > 1 && data[1] % 2 ? texture::TexelEncoding::linear : texture::TexelEncoding::srgb));
         }
     } catch (const Error&) {
     } catch (const std::invalid_argument&) {

@@ -5,18 +5,18 @@
 #include <cmath>
 #include <stdexcept>
 
-#include "raster/error.h"
-#include "raster/obj_loader.h"
+#include "raster/core/error.h"
+#include "raster/io/obj_loader.h"
 #include "tests/fuzz/fuzz_target.h"
 
 namespace tessera::fuzz {
 
 std::string obj_input(Bytes data) {
     const std::string text(reinterpret_cast<const char*>(data.data()), data.size());
-    ObjLoadStats stats;
+    io::ObjLoadStats stats;
     Mesh mesh;
     try {
-        mesh = parse_obj(text, "fuzz.obj", &stats);
+        mesh = io::parse_obj(text, "fuzz.obj", &stats);
     } catch (const Error&) {
         return "";  // rejected with a message: the expected outcome for malformed files
     }
@@ -29,7 +29,7 @@ std::string obj_input(Bytes data) {
     if (!mesh.uvs.empty() && mesh.uvs.size() != mesh.positions.size()) return "uvs not one per position";
     for (const glm::vec3& p : mesh.positions)
         for (int k = 0; k < 3; ++k)
-            if (!std::isfinite(p[k]) || std::fabs(p[k]) > kMaxObjCoordinate) return "bad position kept in the mesh";
+            if (!std::isfinite(p[k]) || std::fabs(p[k]) > io::kMaxObjCoordinate) return "bad position kept in the mesh";
     return "";
 }
 

@@ -15,9 +15,9 @@
 #include <cstring>
 #include <stdexcept>
 
-#include "raster/camera.h"
-#include "raster/rasterizer.h"
-#include "raster/reference_rasterizer.h"
+#include "raster/core/camera.h"
+#include "raster/pipeline/rasterizer.h"
+#include "raster/pipeline/reference_rasterizer.h"
 #include "tests/fuzz/fuzz_target.h"
 
 namespace tessera::fuzz {
@@ -60,9 +60,9 @@ std::string raster_input(Bytes data) {
     Reader in(data);
     const int width = 1 + in.byte() % 48, height = 1 + in.byte() % 48;
     const uint8_t flags = in.byte();
-    RasterOptions options;
+    pipeline::RasterOptions options;
     options.tile_size = 16 << (flags & 3);
-    options.cull = (flags >> 2 & 3) == 1 ? CullMode::back : (flags >> 2 & 3) == 2 ? CullMode::front : CullMode::none;
+    options.cull = (flags >> 2 & 3) == 1 ? pipeline::CullMode::back : (flags >> 2 & 3) == 2 ? pipeline::CullMode::front : pipeline::CullMode::none;
     const int vertices = in.byte();
 
     glm::mat4 vp(1.0f);
@@ -84,12 +84,12 @@ std::string raster_input(Bytes data) {
     for (int v = 0; v < vertices; ++v) mesh.positions.push_back({in.real(), in.real(), in.real()});
     while (!in.empty()) mesh.indices.insert(mesh.indices.end(), {in.byte(), in.byte(), in.byte()});
 
-    const Viewport viewport(width, height);
+    const pipeline::Viewport viewport(width, height);
     VisibilityBuffer fast, reference;
-    Rasterizer rasterizer;
-    RasterStats stats;
+    pipeline::Rasterizer rasterizer;
+    pipeline::RasterStats stats;
     rasterizer.render(mesh, vp, viewport, options, fast, {}, nullptr, &stats);
-    reference_rasterize(mesh, vp, viewport, options, reference);
+    pipeline::reference_rasterize(mesh, vp, viewport, options, reference);
     if (stats.triangles != mesh.triangle_count()) return "stats count the wrong number of triangles";
     return compare(fast, reference);
 }

@@ -15,10 +15,10 @@ namespace tessera::fuzz {
 std::string scene_input(Bytes data) {
     const std::string text(reinterpret_cast<const char*>(data.data()), data.size());
     std::vector<std::string> warnings;
-    SceneSpec spec;
+    scene_file::SceneSpec spec;
     try {
-        spec = parse_scene(text, "fuzz.json", warnings);
-    } catch (const SceneFileError&) {
+        spec = scene_file::parse_scene(text, "fuzz.json", warnings);
+    } catch (const scene_file::SceneFileError&) {
         return "";  // rejected with "FILE: /pointer: problem": expected for bad files
     }
     for (const std::string& w : warnings)
@@ -28,7 +28,7 @@ std::string scene_input(Bytes data) {
     if (spec.size.x < 1 || spec.size.y < 1) return "accepted a non-positive size";
     for (int frame : {spec.animation.first, spec.animation.last}) {
         try {
-            const Camera c = camera_at(spec.camera, float(frame) / spec.animation.fps, 16.0f / 9.0f);
+            const Camera c = render::camera_at(spec.camera, float(frame) / spec.animation.fps, 16.0f / 9.0f);
             (void)c.view_projection();
         } catch (const std::invalid_argument&) {
         }

@@ -1,0 +1,119 @@
+#include "examples/farm/frame_claim.h"
+
+#include <fcntl.h>
+#include <signal.h>
+#include <unistd.h>
+
+#include <cerrno>
+#include <cstring>
+#include <ctime>
+#include <fstream>
+#include <sstream>
+
+#include "raster/core/error.h"
+
+namespace tessera::farm {
+
+namespace fs = std::filesystem;
+
+std::string ClaimOwner::text() const {
+    return host + " " + std::to_string(pid) + " " + std::to_string(time) + "\n";
+}
+
+std::optional<ClaimOwner> ClaimOwner::parse(const std::string& text) {
+    std::istringstream in(text);
+    ClaimOwner o;
+    if (!(in >> o.host >> o.pid >> o.time) || o.pid <= 0) return std::nullopt;
+    return o;
+}
+
+ClaimOwner current_owner() {
+    char host[256] = {};
+    if (gethostname(host, sizeof host - 1) != 0) std::strcpy(host, "unknown");
+    return {host, int64_t(getpid()), int64_t(std::time(nullptr))};
+}
+
+bool claim_is_stale(const ClaimOwner& owner, const ClaimOwner& self, const ClaimPolicy& policy) {
+    if (!policy.take_over_stale) return false;
+    // kill(pid, 0) fails with ESRCH only when no such process exists (EPERM: it exists).
+    if (owner.host == self.host && owner.pid != self.pid && kill(pid_t(owner.pid), 0) != 0 && errno == ESRCH)
+        return true;
+    return policy.stale_after_s > 0.0 && double(self.time - owner.time) > policy.stale_after_s;
+}
+
+fs::path claim_path(const fs::path& frame) {
+    std::string name = ".";  // appended piecewise: GCC 12 misreports "." + string (-Wrestrict)
+    name += frame.filename().string();
+    name += ".claim";
+    return frame.parent_path() / name;
+}
+
+namespace {
+
+// The whole file, or "" when it is missing or unreadable (a claim being replaced).
+std::string read_small_file(const fs::path& p) {
+    std::ifstream in(p, std::ios::binary);
+    std::ostringstream s;
+    s << in.rdbuf();
+    return in ? s.str() : std::string();
+}
+
+[[noreturn]] void fail(const fs::path& p, const char* what) {
+    throw Error("cannot claim frame with '" + p.string() + "': " + what);
+}
+
+// Creates the claim file exclusively; false when it already exists.
+bool create_claim(const fs::path& claim, const ClaimOwner& self) {
+    const int fd = open(claim.c_str(), O_CREAT | O_EXCL | O_WRONLY | O_CLOEXEC, 0644);
+    if (fd < 0) {
+        if (errno == EEXIST) return false;
+        fail(claim, std::strerror(errno));
+    }
+    const std::string text = self.text();
+    const ssize_t n = write(fd, text.data(), text.size());
+    const int write_errno = errno;
+    close(fd);
+    if (n != ssize_t(text.size())) {
+        unlink(claim.c_str());
+        fail(claim, n < 0 ? std::strerror(write_errno) : "short write");
+    }
+    return true;
+}
+
+}  // namespace
+
+ClaimResult try_claim(const fs::path& frame, const ClaimPolicy& policy) {
+    const fs::path claim = claim_path(frame);
+    const ClaimOwner self = current_owner();
+    // A few rounds: each lost race against another process breaking the same stale claim
+    // starts over with a fresh exclusive create.
+    for (int round = 0; round < 4; ++round) {
+        if (create_claim(claim, self)) return round == 0 ? ClaimResult::claimed : ClaimResult::taken_over;
+        const std::string seen = read_small_file(claim);
+        const std::optional<ClaimOwner> owner = ClaimOwner::parse(seen);
+        if (!owner || !claim_is_stale(*owner, self, policy)) return ClaimResult::held;
+        const fs::path moved = claim.string() + ".stale." + self.host + "." + std::to_string(self.pid);
+        if (std::rename(claim.c_str(), moved.c_str()) != 0) {
+            if (errno == ENOENT) continue;  // someone else broke it first
+            fail(claim, std::strerror(errno));
+        }
+        if (read_small_file(moved) != seen) {
+            // Between reading and renaming, another process broke the stale claim and made
+            // its own, which we just moved: give it back (link fails if a third one exists).
+            (void)link(moved.c_str(), claim.c_str());
+            unlink(moved.c_str());
+            return ClaimResult::held;
+        }
+        unlink(moved.c_str());
+    }
+    return ClaimResult::held;
+}
+
+void release_claim(const fs::path& frame) {
+    const fs::path claim = claim_path(frame);
+    const std::optional<ClaimOwner> owner = ClaimOwner::parse(read_small_file(claim));
+    const ClaimOwner self = current_owner();
+    if (owner && owner->host == self.host && owner->pid == self.pid) unlink(claim.c_str());
+}
+
+}  // namespace tessera::farm

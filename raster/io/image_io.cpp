@@ -1,0 +1,97 @@
+#include "raster/io/image_io.h"
+
+#include <OpenImageIO/filesystem.h>
+#include <OpenImageIO/imageio.h>
+
+#include <string>
+#include <system_error>
+
+#include "raster/core/atomic_file.h"
+#include "raster/core/error.h"
+#include "raster/io/oiio_pixel_type.h"
+
+namespace tessera::io {
+namespace fs = std::filesystem;
+
+namespace {
+
+std::string describe(const fs::path& path) { return "'" + path.string() + "'"; }
+
+}  // namespace
+
+bool image_format_supported(const fs::path& path) {
+    auto out = OIIO::ImageOutput::create(path.string());
+    if (!out) {
+        (void)OIIO::geterror();  // clear the thread's pending message
+        return false;
+    }
+    return true;
+}
+
+bool image_is_complete(const fs::path& path, int width, int height) {
+    std::error_code ec;
+    if (!fs::is_regular_file(path, ec)) return false;
+    auto in = OIIO::ImageInput::open(path.string());
+    if (!in) {
+        (void)OIIO::geterror();
+        return false;
+    }
+    return in->spec().width == width && in->spec().height == height;
+}
+
+void write_image(const fs::path& path, const ImageView& image) {
+    if (image.width <= 0 || image.height <= 0 || image.channels <= 0 || !image.pixels)
+        throw Error("cannot write " + describe(path) + ": the image is empty");
+
+    // Encode in memory, then hand the bytes to write_file_atomically: OpenImageIO's own file
+    // writers do not all report a failed fwrite (a full disk gave a "successful" empty PNG).
+    std::vector<unsigned char> encoded;
+    OIIO::Filesystem::IOVecOutput sink(encoded);
+    auto out = OIIO::ImageOutput::create(path.string(), &sink);
+    if (!out) {
+        std::string why = OIIO::geterror();
+        throw Error("cannot write " + describe(path) + ": no image format for extension '" +
+                    path.extension().string() + "'" + (why.empty() ? "" : " (" + why + ")"));
+    }
+    if (!out->supports("ioproxy"))
+        throw Error("cannot write " + describe(path) + ": format '" +
+                    std::string(out->format_name()) + "' cannot be encoded in memory");
+
+    OIIO::ImageSpec spec(image.width, image.height, image.channels, oiio_type(image.type));
+    bool ok = out->open(path.string(), spec) &&
+              out->write_image(oiio_type(image.type), image.pixels);
+    ok = out->close() && ok;
+    if (!ok) {
+        std::string why = out->geterror();
+        throw Error("cannot write " + describe(path) + ": " +
+                    (why.empty() ? std::string("encoding failed") : why));
+    }
+    write_file_atomically(path, std::as_bytes(std::span(encoded.data(), encoded.size())));
+}
+
+FloatImage read_image(const fs::path& path) {
+    std::error_code ec;
+    if (!fs::is_regular_file(path, ec))
+        throw Error("cannot read " + describe(path) + ": no such file");
+    auto in = OIIO::ImageInput::open(path.string());
+    if (!in) {
+        std::string why = OIIO::geterror();
+        throw Error("cannot read " + describe(path) + ": " + (why.empty() ? "not an image" : why));
+    }
+    const OIIO::ImageSpec& spec = in->spec();
+    // Guard against absurd headers before allocating: a 200-byte file can claim gigapixels
+    // (found by fuzz_image), and the float buffer is allocated before decoding starts. 2^28
+    // floats (1 GiB) still holds an 8192x8192 RGBA texture.
+    const uint64_t count = uint64_t(spec.width) * uint64_t(spec.height) * uint64_t(spec.nchannels);
+    if (spec.width <= 0 || spec.height <= 0 || spec.nchannels <= 0 || count > (uint64_t(1) << 28))
+        throw Error("cannot read " + describe(path) + ": unsupported image size " +
+                    std::to_string(spec.width) + "x" + std::to_string(spec.height));
+    FloatImage image{spec.width, spec.height, spec.nchannels, std::vector<float>(count)};
+    if (!in->read_image(0, 0, 0, spec.nchannels, OIIO::TypeDesc::FLOAT, image.pixels.data())) {
+        std::string why = in->geterror();
+        throw Error("cannot read " + describe(path) + ": " + (why.empty() ? "decode failed" : why));
+    }
+    return image;
+}
+
+}  // namespace tessera::io

@@ -1,0 +1,53 @@
+// Image files through OpenImageIO: PNG, EXR, TIFF (and anything else OIIO writes), chosen by
+// the file name's extension. Rows are stored top to bottom, channels interleaved.
+//
+// Writing is atomic (see atomic_file.h): an interrupted or failed write never leaves a
+// half-written image under the final name.
+#pragma once
+#include <cstddef>
+#include <cstdint>
+#include <filesystem>
+#include <span>
+#include <vector>
+
+namespace tessera::io {
+
+enum class PixelType { u8, u16, f32 };
+
+inline size_t pixel_type_bytes(PixelType type) {
+    return type == PixelType::u8 ? 1 : type == PixelType::u16 ? 2 : 4;
+}
+
+// A read-only view of pixels in memory; `pixels` holds width*height*channels values of `type`.
+struct ImageView {
+    int width = 0;
+    int height = 0;
+    int channels = 0;
+    PixelType type = PixelType::u8;
+    const void* pixels = nullptr;
+};
+
+// An image read back as 32-bit floats (8/16-bit files are normalised to [0,1]).
+struct FloatImage {
+    int width = 0;
+    int height = 0;
+    int channels = 0;
+    std::vector<float> pixels;
+    float at(int x, int y, int c) const { return pixels[(size_t(y) * width + x) * channels + c]; }
+};
+
+// Writes `image` to `path`; the file stores the pixel type given where the format supports it
+// (OpenImageIO converts otherwise, e.g. float to 16-bit for PNG). Throws tessera::Error.
+void write_image(const std::filesystem::path& path, const ImageView& image);
+
+// Reads any image OpenImageIO understands. Throws tessera::Error with the reason.
+FloatImage read_image(const std::filesystem::path& path);
+
+// True when `path` is an image OpenImageIO can open whose header says width x height: how
+// --resume recognises a finished frame (writes are atomic, so a present file is complete).
+bool image_is_complete(const std::filesystem::path& path, int width, int height);
+
+// True when OpenImageIO has a writer for the extension of `path` (".png", ".exr", ...).
+bool image_format_supported(const std::filesystem::path& path);
+
+}  // namespace tessera::io

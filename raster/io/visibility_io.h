@@ -1,0 +1,20 @@
+// Files of a VisibilityBuffer, as `tessera raster` writes them (issue 3):
+// - TSID: ASCII header "TSID <width> <height>\n", then width*height little-endian uint32
+//   triangle ids, rows top to bottom, 0xFFFFFFFF where nothing covers.
+// - PFM depth: "Pf\n<width> <height>\n-1.0\n" (negative scale = little-endian), then float32
+//   window depth, rows BOTTOM to top as the format requires, 1.0 where empty.
+// Both are written atomically (atomic_file.h).
+#pragma once
+#include <filesystem>
+
+#include "raster/core/visibility.h"
+
+namespace tessera::io {
+
+void write_tsid(const std::filesystem::path& path, const VisibilityBuffer& visibility);
+void write_depth_pfm(const std::filesystem::path& path, const VisibilityBuffer& visibility);
+
+// Reads a TSID file back (for tests and tools); throws tessera::Error when malformed.
+VisibilityBuffer read_tsid(const std::filesystem::path& path);
+
+}  // namespace tessera::io

@@ -1,0 +1,39 @@
+// The output of a rendered frame (core/frame.h) to files.
+//
+// write_frame() picks the encoding from the extension, converting colour space in exactly one
+// place (color_space.h):
+//   .exr            32-bit float RGBA, linear, unchanged (for compositing and comparisons);
+//   .png            8-bit RGBA, RGB sRGB-encoded, alpha linear;
+//   .tif / .tiff    16-bit RGBA, RGB sRGB-encoded, alpha linear;
+//   anything else OpenImageIO writes: 8-bit sRGB like PNG.
+// The file is written atomically (image_io.h).
+#pragma once
+#include <glm/glm.hpp>
+
+#include <cstdint>
+#include <filesystem>
+#include <vector>
+
+#include "raster/core/frame.h"
+#include "raster/output/frame_writer.h"
+
+namespace tessera::output {
+
+
+// The display encoding of a frame: RGB through linear_to_srgb, alpha clamped, each channel
+// quantised to `levels` - 1 (255 or 65535) with rounding to nearest.
+std::vector<uint8_t> encode_srgb8(const Frame& frame);
+std::vector<uint16_t> encode_srgb16(const Frame& frame);
+
+// The pixel type `path`'s extension stores (see above).
+io::PixelType frame_pixel_type(const std::filesystem::path& path);
+
+// The frame encoded as `path`'s extension asks (see above), ready for write_image or for the
+// background FrameWriter (frame_writer.h).
+OwnedImage encode_frame(const std::filesystem::path& path, const Frame& frame);
+
+// encode_frame + write_image. Throws tessera::Error (unwritable path, unknown extension)
+// naming the file.
+void write_frame(const std::filesystem::path& path, const Frame& frame);
+
+}  // namespace tessera::output

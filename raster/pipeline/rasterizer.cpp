@@ -1,0 +1,208 @@
+#include "raster/pipeline/rasterizer.h"
+
+#include <tbb/blocked_range.h>
+#include <tbb/enumerable_thread_specific.h>
+#include <tbb/parallel_for.h>
+
+#include <algorithm>
+#include <atomic>
+#include <chrono>
+#include <cstring>
+
+#include "raster/pipeline/bin.h"
+#include "raster/pipeline/primitive_stage.h"
+#include "raster/core/trace.h"
+
+namespace tessera::pipeline {
+
+namespace {
+
+using Clock = std::chrono::steady_clock;
+double ms_since(Clock::time_point start) {
+    return std::chrono::duration<double, std::milli>(Clock::now() - start).count();
+}
+
+// Per-thread storage of the tile stage, reused across tiles and frames.
+struct TileScratch {
+    TileBuffers buffers;
+    std::vector<glm::vec4> color;
+    std::vector<Fragment> fragments;
+};
+
+}  // namespace
+
+struct Rasterizer::State {
+    ClipVertices vertices;
+    std::vector<ChunkBins> chunks;
+    std::vector<RasterStats> chunk_stats;
+    std::vector<std::vector<uint32_t>> bin_scratch;
+    tbb::enumerable_thread_specific<TileScratch> scratch;
+    TileGrid grid;
+};
+
+// What for_each_transparent needs to find one tile's triangles again.
+struct TileWork {
+    const std::vector<ChunkBins>* chunks;
+    int tile;
+    std::vector<Fragment>* fragments;
+};
+
+void TileContext::for_each_transparent(
+    const std::function<void(uint32_t, std::span<const Fragment>)>& blend) const {
+    std::vector<Fragment>& fragments = *work->fragments;
+    const size_t capacity = size_t(width()) * size_t(height()) + simd::kLanes;
+    if (fragments.size() < capacity) fragments.resize(capacity);
+    for (const ChunkBins& chunk : *work->chunks) {
+        for (const TriangleSetup* e = chunk.begin(work->tile); e != chunk.end(work->tile); ++e) {
+            const TriangleSetup& t = *e;
+            if (!t.transparent) continue;
+            const size_t n = rasterize_tested(t, rect, depth, stride, fragments.data());
+            if (n) blend(t.triangle, std::span<const Fragment>(fragments.data(), n));
+        }
+    }
+}
+
+Rasterizer::Rasterizer() : state_(std::make_unique<State>()) {}
+Rasterizer::~Rasterizer() = default;
+
+const ClipVertices& Rasterizer::clip_vertices() const { return state_->vertices; }
+
+void Rasterizer::render(const Mesh& mesh, const glm::mat4& view_projection, const Viewport& viewport,
+                        const RasterOptions& options, VisibilityBuffer& visibility,
+                        std::span<const TilePass> passes, std::vector<glm::vec4>* color,
+                        RasterStats* stats) {
+    const auto start = Clock::now();
+    State& s = *state_;
+    const size_t triangle_count = mesh.triangle_count();
+    if (mesh.vertex_count() >= (size_t(1) << 31) || triangle_count >= (size_t(1) << 31))
+        throw std::invalid_argument("mesh too large: at most 2^31 - 1 vertices and triangles");
+    if (!options.transparent.empty() && options.transparent.size() != triangle_count)
+        throw std::invalid_argument("RasterOptions::transparent must be empty or hold one flag per triangle");
+    s.grid = TileGrid(viewport.width, viewport.height, options.tile_size);
+    const TileGrid& grid = s.grid;
+
+    // Vertex stage.
+    {
+        TraceScope trace("vertex stage");
+        run_vertex_stage(mesh, view_projection, viewport, s.vertices);
+    }
+    const double vertex_ms = ms_since(start);
+
+    // Primitive stage and binning, per chunk of triangles in parallel.
+    const auto setup_start = Clock::now();
+    const size_t chunk_size = std::clamp<size_t>(triangle_count / 64, 4096, 65536);
+    const size_t chunk_count = (triangle_count + chunk_size - 1) / chunk_size;
+    s.chunks.resize(chunk_count);
+    s.bin_scratch.resize(chunk_count);
+    s.chunk_stats.assign(chunk_count, RasterStats{});
+    tbb::parallel_for(tbb::blocked_range<size_t>(0, chunk_count, 1), [&](const tbb::blocked_range<size_t>& r) {
+        for (size_t c = r.begin(); c != r.end(); ++c) {
+            TraceScope trace("setup+bin chunk", "chunk", int(c));
+            ChunkBins& chunk = s.chunks[c];
+            chunk.setups.clear();
+            const uint32_t first = uint32_t(c * chunk_size);
+            const uint32_t last = uint32_t(std::min(triangle_count, (c + 1) * chunk_size));
+            run_primitive_stage(mesh, s.vertices, viewport, options, first, last, chunk.setups,
+                                s.chunk_stats[c]);
+            chunk.bin(grid, s.bin_scratch[c]);
+        }
+    });
+    const double setup_bin_ms = ms_since(setup_start);
+
+    // Tile stage: rasterize, write visibility, run the passes.
+    const auto raster_start = Clock::now();
+    visibility.width = viewport.width;
+    visibility.height = viewport.height;
+    if (options.depth_only && (color || !passes.empty()))
+        throw std::invalid_argument("Rasterizer::render: a depth-only render takes no passes or colour");
+    if (options.depth_only) visibility.triangle.clear();
+    else visibility.triangle.resize(size_t(viewport.width) * viewport.height);
+    visibility.depth.resize(size_t(viewport.width) * viewport.height);
+    if (color && !options.tile_color)
+        throw std::invalid_argument("Rasterizer::render: a colour buffer needs RasterOptions::tile_color");
+    if (color) color->resize(size_t(viewport.width) * viewport.height);
+    const bool run_passes = color || !passes.empty();
+    std::atomic<uint64_t> visible_pixels{0};
+    std::atomic<int64_t> pass_ns{0};
+    tbb::parallel_for(tbb::blocked_range<int>(0, grid.count(), 1), [&](const tbb::blocked_range<int>& r) {
+        TileScratch& scratch = s.scratch.local();
+        for (int tile = r.begin(); tile != r.end(); ++tile) {
+            const int tx = tile % grid.tiles_x, ty = tile / grid.tiles_x;
+            const TileRect rect{tx * grid.size, ty * grid.size, std::min((tx + 1) * grid.size, grid.width),
+                                std::min((ty + 1) * grid.size, grid.height)};
+            TraceScope trace("raster tile", "tile", rect.x0, rect.y0);
+            TileBuffers& buffers = scratch.buffers;
+            if (buffers.size != grid.size) buffers.clear(grid.size);  // else flush() cleared them
+            for (const ChunkBins& chunk : s.chunks)
+                for (const TriangleSetup* e = chunk.begin(tile); e != chunk.end(tile); ++e) {
+                    const TriangleSetup& t = *e;
+                    if (t.transparent) continue;
+                    if (options.depth_only) rasterize_depth(t, rect, buffers);
+                    else rasterize_opaque(t, rect, buffers);
+                }
+
+            // Visibility out: stamp-swizzled tile to row-major frame.
+            const int w = rect.x1 - rect.x0, h = rect.y1 - rect.y0;
+            const size_t origin = size_t(rect.y0) * viewport.width + rect.x0;
+            // Without passes nothing reads the tile again during the frame: stream it out.
+            buffers.flush(w, h, options.depth_only ? nullptr : visibility.triangle.data() + origin,
+                          visibility.depth.data() + origin, size_t(viewport.width), !run_passes);
+            if (stats && !options.depth_only) {
+                uint64_t visible = 0;
+                for (int y = 0; y < h; ++y)
+                    for (int x = 0; x < w; ++x)
+                        visible += visibility.triangle[origin + size_t(y) * viewport.width + x] != kNoTriangle;
+                visible_pixels += visible;
+            }
+            if (!run_passes) continue;
+
+            const auto pass_start = Clock::now();
+            if (options.tile_color) scratch.color.assign(size_t(grid.size) * grid.size, options.clear_color);
+            TileWork work{&s.chunks, tile, &scratch.fragments};
+            TileContext context;
+            context.rect = rect;
+            context.viewport = &viewport;
+            context.mesh = &mesh;
+            context.clip = &s.vertices;
+            context.triangle = visibility.triangle.data() + origin;
+            context.depth = visibility.depth.data() + origin;
+            context.stride = size_t(viewport.width);
+            context.color = options.tile_color ? scratch.color.data() : nullptr;
+            context.color_stride = size_t(grid.size);
+            context.work = &work;
+            for (const TilePass& pass : passes) pass(context);
+            if (color)
+                for (int y = 0; y < h; ++y)
+                    std::memcpy(color->data() + size_t(rect.y0 + y) * viewport.width + rect.x0,
+                                scratch.color.data() + size_t(y) * grid.size, size_t(w) * sizeof(glm::vec4));
+            if (stats) pass_ns += std::chrono::duration_cast<std::chrono::nanoseconds>(Clock::now() - pass_start).count();
+        }
+    });
+
+    if (stats) {
+        RasterStats total;
+        for (const RasterStats& c : s.chunk_stats) {
+            total.triangles += c.triangles;
+            total.invalid += c.invalid;
+            total.outside += c.outside;
+            total.clipped += c.clipped;
+            total.zero_area += c.zero_area;
+            total.culled_face += c.culled_face;
+            total.no_samples += c.no_samples;
+            total.setups += c.setups;
+        }
+        for (const ChunkBins& chunk : s.chunks) total.bin_entries += chunk.entries.size();
+        total.visible_pixels = visible_pixels;
+        total.vertex_ms = vertex_ms;
+        total.setup_bin_ms = setup_bin_ms;
+        // Pass time is summed over threads; report it as wall-time share of the tile stage.
+        const double tile_ms = ms_since(raster_start);
+        const double pass_ms = double(pass_ns.load()) * 1e-6 / std::max(1, tbb::this_task_arena::max_concurrency());
+        total.passes_ms = std::min(pass_ms, tile_ms);
+        total.raster_ms = tile_ms - total.passes_ms;
+        total.total_ms = ms_since(start);
+        *stats = total;
+    }
+}
+
+}  // namespace tessera::pipeline

@@ -1,0 +1,83 @@
+#include "raster/pipeline/reference_rasterizer.h"
+
+#include <algorithm>
+
+#include "raster/pipeline/clip.h"
+#include "raster/pipeline/triangle_setup.h"
+#include "raster/pipeline/vertex_stage.h"
+
+namespace tessera::pipeline {
+
+namespace {
+
+// The D3D coverage rule evaluated directly at pixel centre (px, py) in sub-pixels.
+bool covers(const WindowVertex v[3], int64_t px, int64_t py) {
+    for (int i = 0; i < 3; ++i) {
+        const WindowVertex& a = v[i];
+        const WindowVertex& b = v[(i + 1) % 3];
+        const int64_t dX = b.X - a.X, dY = b.Y - a.Y;
+        const int64_t e = dX * (py - a.Y) - dY * (px - a.X);
+        if (e < 0 || (e == 0 && !is_top_left(int32_t(dX), int32_t(dY)))) return false;
+    }
+    return true;
+}
+
+void draw(const WindowVertex& v0, const WindowVertex& v1, const WindowVertex& v2, uint32_t id,
+          const Viewport& viewport, CullMode cull, VisibilityBuffer& out) {
+    const int64_t area2 = int64_t(v1.X - v0.X) * (v2.Y - v0.Y) - int64_t(v1.Y - v0.Y) * (v2.X - v0.X);
+    if (area2 == 0) return;
+    const bool front = area2 < 0;  // counter-clockwise in NDC (y up) is clockwise on screen
+    if ((cull == CullMode::back && !front) || (cull == CullMode::front && front)) return;
+    // Orient so that the inside is where every edge function is positive.
+    const WindowVertex v[3] = {v0, area2 > 0 ? v1 : v2, area2 > 0 ? v2 : v1};
+    const DepthPlane plane = DepthPlane::from(v0, v1, v2);
+    // Whole viewport, restricted to the vertices' box only to keep the tests fast.
+    const int64_t xmin = std::min({v0.X, v1.X, v2.X}) / kSubpixels - 1;
+    const int64_t xmax = std::max({v0.X, v1.X, v2.X}) / kSubpixels + 1;
+    const int64_t ymin = std::min({v0.Y, v1.Y, v2.Y}) / kSubpixels - 1;
+    const int64_t ymax = std::max({v0.Y, v1.Y, v2.Y}) / kSubpixels + 1;
+    for (int64_t y = std::max<int64_t>(ymin, 0); y <= std::min<int64_t>(ymax, viewport.height - 1); ++y)
+        for (int64_t x = std::max<int64_t>(xmin, 0); x <= std::min<int64_t>(xmax, viewport.width - 1); ++x) {
+            if (!covers(v, x * kSubpixels + kSubpixels / 2, y * kSubpixels + kSubpixels / 2)) continue;
+            const float z = plane.at(int(x), int(y));
+            const size_t i = size_t(y) * viewport.width + size_t(x);
+            if (z < out.depth[i]) {
+                out.depth[i] = z;
+                out.triangle[i] = id;
+            }
+        }
+}
+
+}  // namespace
+
+void reference_rasterize(const Mesh& mesh, const glm::mat4& vp, const Viewport& viewport,
+                         const RasterOptions& options, VisibilityBuffer& out) {
+    out.reset(viewport.width, viewport.height);
+    for (size_t t = 0; t < mesh.triangle_count(); ++t) {
+        if (!options.transparent.empty() && options.transparent[t]) continue;
+        glm::vec4 clip[3];
+        uint32_t codes[3];
+        bool valid = true;
+        for (int k = 0; k < 3; ++k) {
+            const uint32_t index = mesh.indices[3 * t + k];
+            if (index >= mesh.vertex_count()) {
+                valid = false;
+                break;
+            }
+            const glm::vec3 p = mesh.positions[index];
+            clip_position(vp, p.x, p.y, p.z, clip[k].x, clip[k].y, clip[k].z, clip[k].w);
+            codes[k] = clip_code(viewport, clip[k].x, clip[k].y, clip[k].z, clip[k].w);
+        }
+        if (!valid || ((codes[0] | codes[1] | codes[2]) & kClipInvalid) || (codes[0] & codes[1] & codes[2]))
+            continue;
+        glm::vec4 polygon[kMaxClippedVertices];
+        const int n = (codes[0] | codes[1] | codes[2])
+                          ? clip_triangle(clip, codes[0] | codes[1] | codes[2], viewport, polygon)
+                          : (std::copy(clip, clip + 3, polygon), 3);
+        WindowVertex w[kMaxClippedVertices];
+        for (int i = 0; i < n; ++i) w[i] = project_and_snap(viewport, polygon[i]);
+        for (int i = 1; i + 1 < n; ++i) draw(w[0], w[i], w[i + 1], uint32_t(t), viewport, options.cull, out);
+    }
+}
+
+}  // namespace tessera::pipeline

@@ -1,0 +1,62 @@
+// The tile stage's inner loop: one triangle setup against one screen tile (DESIGN.md "One
+// frame", step 4). Traversal descends tile -> 16x16 block -> SIMD stamp (simd.h: 4x4 pixels
+// for 16 lanes) with trivial reject / accept on the edge functions, steps the edge functions
+// incrementally in int32 lanes (ranges in fixed_point.h) and evaluates the depth plane per
+// stamp. Small triangles skip the block level (llvmpipe-style size classes).
+#pragma once
+#include <cstdint>
+
+#include "raster/core/aligned_vector.h"
+#include "raster/simd/simd.h"
+#include "raster/pipeline/triangle_setup.h"
+
+namespace tessera::pipeline {
+
+// Pixels [x0, x1) x [y0, y1) of the frame.
+struct TileRect {
+    int x0 = 0, y0 = 0, x1 = 0, y1 = 0;
+};
+
+// A tile's depth and triangle ids, small enough to stay in L1/L2 while every triangle of the
+// tile is drawn. Stamp-swizzled: the kLanes pixels of one stamp are contiguous (one aligned
+// vector), stamps in row-major order.
+struct TileBuffers {
+    int size = 0;
+    AlignedVector<float> depth;
+    AlignedVector<uint32_t> triangle;
+    AlignedVector<uint32_t> rows;  // flush(): kStampH rows of the tile in row-major order
+
+    void clear(int tile_size);  // depth 1.0, no triangle
+    // Copies the tile's pixels [0, width) x [0, height) to row-major triangle / depth arrays
+    // with `stride` elements per row (pointing at the tile's first pixel; triangle_out null:
+    // depth only, the ids were not written), and leaves the
+    // buffers cleared for the next tile of the same size. `stream`: with non-temporal stores
+    // (simd::stream_copy) where the rows start on cache lines, for output that is not read
+    // again soon; they skip reading each destination line first, which is most of the
+    // copy's cost once the frame is out of cache.
+    void flush(int width, int height, uint32_t* triangle_out, float* depth_out, size_t stride,
+               bool stream);
+    // Index of tile-local pixel (x, y) in the arrays.
+    size_t index(int x, int y) const {
+        const int stamp = (y / simd::kStampH) * (size / simd::kStampW) + x / simd::kStampW;
+        return size_t(stamp) * simd::kLanes + (y % simd::kStampH) * simd::kStampW + x % simd::kStampW;
+    }
+};
+
+// Depth test LESS and write of one opaque triangle into the tile.
+void rasterize_opaque(const TriangleSetup& t, const TileRect& tile, TileBuffers& buffers);
+// The same without triangle ids (depth-only renders: shadow maps).
+void rasterize_depth(const TriangleSetup& t, const TileRect& tile, TileBuffers& buffers);
+
+// A covered pixel centre of a triangle: frame pixel (x, y) and its window depth.
+struct Fragment {
+    uint16_t x, y;
+    float depth;
+};
+
+// Appends the fragments of `t` inside `tile` whose depth is LESS than depth[(y - y0) * stride +
+// (x - x0)] to `out` (nothing is written to depth); returns how many were appended.
+size_t rasterize_tested(const TriangleSetup& t, const TileRect& tile, const float* depth,
+                        size_t stride, Fragment* out);
+
+}  // namespace tessera::pipeline

@@ -1,0 +1,92 @@
+#include "raster/pipeline/triangle_setup.h"
+
+#include <algorithm>
+#include <cmath>
+
+namespace tessera::pipeline {
+
+WindowVertex project_and_snap(const Viewport& viewport, const glm::vec4& clip) {
+    float wx, wy, wz;
+    viewport.to_window(clip.x, clip.y, clip.z, clip.w, wx, wy, wz);
+    const float sub = float(kSubpixels);
+    return {int32_t(std::nearbyint(wx * sub)), int32_t(std::nearbyint(wy * sub)), wz};
+}
+
+DepthPlane DepthPlane::from(const WindowVertex& v0, const WindowVertex& v1, const WindowVertex& v2) {
+    // Plane through (X_i / 256, Y_i / 256, z_i) in pixel units; exact in double for the
+    // integer parts (|X| <= 2^22), so both windings give the same coefficients.
+    const double x1 = double(v1.X - v0.X) / kSubpixels, y1 = double(v1.Y - v0.Y) / kSubpixels;
+    const double x2 = double(v2.X - v0.X) / kSubpixels, y2 = double(v2.Y - v0.Y) / kSubpixels;
+    const double z1 = double(v1.z) - double(v0.z), z2 = double(v2.z) - double(v0.z);
+    const double det = x1 * y2 - x2 * y1;
+    DepthPlane p;
+    p.ax = int16_t(v0.X >> kSubpixelBits);  // the pixel that holds vertex 0 (floor)
+    p.ay = int16_t(v0.Y >> kSubpixelBits);
+    if (det == 0.0) {  // never traversed (zero area), but keep the plane finite
+        p.c = v0.z;
+        return p;
+    }
+    const double inv_det = 1.0 / det;
+    const double a = (z1 * y2 - z2 * y1) * inv_det;
+    const double b = (x1 * z2 - x2 * z1) * inv_det;
+    // Depth at the anchor pixel's centre.
+    const double cx = (double(p.ax) + 0.5) - double(v0.X) / kSubpixels;
+    const double cy = (double(p.ay) + 0.5) - double(v0.Y) / kSubpixels;
+    p.a = float(a);
+    p.b = float(b);
+    p.c = float(double(v0.z) + a * cx + b * cy);
+    return p;
+}
+
+float DepthPlane::at(int x, int y) const {
+    const float z = std::fma(a, float(x - ax), std::fma(b, float(y - ay), c));
+    return std::min(std::max(z, 0.0f), 1.0f);
+}
+
+SetupResult setup_triangle(const WindowVertex& v0, const WindowVertex& v1_in,
+                           const WindowVertex& v2_in, CullMode cull, const Viewport& viewport,
+                           TriangleSetup& out) {
+    WindowVertex v1 = v1_in, v2 = v2_in;
+    // Twice the signed area in sub-pixels^2 (fixed_point.h: |.| <= 2^47).
+    const int64_t area2 = int64_t(v1.X - v0.X) * (v2.Y - v0.Y) - int64_t(v1.Y - v0.Y) * (v2.X - v0.X);
+    if (area2 == 0) return SetupResult::zero_area;
+    // Window y runs down, so a counter-clockwise (front) triangle in NDC has area2 < 0.
+    const bool front = area2 < 0;
+    if ((cull == CullMode::back && !front) || (cull == CullMode::front && front))
+        return SetupResult::culled_face;
+    if (area2 < 0) std::swap(v1, v2);  // inside: all edge functions positive
+
+    const int32_t xmin = std::min(v0.X, std::min(v1.X, v2.X)), xmax = std::max(v0.X, std::max(v1.X, v2.X));
+    const int32_t ymin = std::min(v0.Y, std::min(v1.Y, v2.Y)), ymax = std::max(v0.Y, std::max(v1.Y, v2.Y));
+    // Pixels whose centre 256x + 128 lies within [xmin, xmax].
+    const int32_t minx = std::max((xmin + kSubpixels / 2 - 1) >> kSubpixelBits, 0);
+    const int32_t maxx = std::min((xmax - kSubpixels / 2) >> kSubpixelBits, viewport.width - 1);
+    const int32_t miny = std::max((ymin + kSubpixels / 2 - 1) >> kSubpixelBits, 0);
+    const int32_t maxy = std::min((ymax - kSubpixels / 2) >> kSubpixelBits, viewport.height - 1);
+    if (minx > maxx || miny > maxy) return SetupResult::no_samples;
+
+    // E(P) = dX*(Py - Ya) - dY*(Px - Xa) at P = (256x + 128, 256y + 128) equals
+    // 256*(dX*y - dY*x) + K. Inside: E > 0, or E == 0 on a top/left edge, i.e.
+    // E - 1 + tl >= 0, i.e. (dX*y - dY*x) + floor((K - 1 + tl) / 256) >= 0 (>> floors).
+    auto edge = [&](int i, const WindowVertex& a, const WindowVertex& b) {
+        const int32_t dX = b.X - a.X, dY = b.Y - a.Y;
+        const int64_t K = int64_t(dX) * (kSubpixels / 2 - a.Y) - int64_t(dY) * (kSubpixels / 2 - a.X) -
+                          (is_top_left(dX, dY) ? 0 : 1);
+        out.f[i] = int64_t(dX) * miny - int64_t(dY) * minx + (K >> kSubpixelBits);
+        out.dx[i] = dX;
+        out.dy[i] = dY;
+    };
+    edge(0, v0, v1);
+    edge(1, v1, v2);
+    edge(2, v2, v0);
+    out.depth = DepthPlane::from(v0, v1, v2);
+    out.minx = int16_t(minx);
+    out.miny = int16_t(miny);
+    out.maxx = int16_t(maxx);
+    out.maxy = int16_t(maxy);
+    out.small = (xmax - xmin) < kSmallExtent && (ymax - ymin) < kSmallExtent;
+    out.transparent = 0;
+    return SetupResult::drawn;
+}
+
+}  // namespace tessera::pipeline

@@ -1,0 +1,68 @@
+// Triangle setup (seeds/000 item 5, D3D11.3 §3.4): from three snapped window vertices to the
+// integer edge functions, the bounding box and the depth plane Z = aX + bY + c that traversal
+// steps across pixels. Integer ranges are documented in fixed_point.h.
+#pragma once
+#include <glm/glm.hpp>
+
+#include <cstdint>
+
+#include "raster/pipeline/fixed_point.h"
+#include "raster/pipeline/viewport.h"
+
+namespace tessera::pipeline {
+
+// A vertex after the viewport transform: X, Y in 16.8 fixed point (round to nearest, D3D11.3
+// §3.2.4.1), z = window depth.
+struct WindowVertex {
+    int32_t X = 0, Y = 0;
+    float z = 0.0f;
+};
+
+// Scalar projection + snap of a clip-space vertex with w > 0; bit-identical to the SIMD
+// vertex stage (same float operations, round to nearest even).
+WindowVertex project_and_snap(const Viewport& viewport, const glm::vec4& clip);
+
+// Window depth as a plane over pixel centres, anchored at pixel (ax, ay):
+//   z(x, y) = clamp(fma(a, x - ax, fma(b, y - ay, c)), 0, 1)
+// with x - ax, y - ay converted to float exactly. The plane is set up on the snapped
+// positions (D3D11.3 §3.4.1) in double precision; every path (SIMD tiles, scalar reference)
+// evaluates this same expression, so depths agree to the bit.
+struct DepthPlane {
+    float a = 0.0f, b = 0.0f, c = 0.0f;
+    int16_t ax = 0, ay = 0;  // |window coordinates| < 2^14 (fixed_point.h)
+
+    static DepthPlane from(const WindowVertex& v0, const WindowVertex& v1, const WindowVertex& v2);
+    float at(int x, int y) const;
+};
+
+enum class CullMode { none, back, front };  // front faces are counter-clockwise in NDC (GL)
+
+// Everything traversal needs for one (possibly clipped) triangle.
+//
+// Edge i runs from vertex i to vertex i+1 of the triangle, oriented so the inside is where all
+// three reduced edge functions F_i >= 0 (fixed_point.h). F_i is affine over integer pixel
+// coordinates: F_i(x+1, y) = F_i(x, y) - dy[i] and F_i(x, y+1) = F_i(x, y) + dx[i].
+struct TriangleSetup {
+    int64_t f[3];         // F_i at pixel (minx, miny)
+    int32_t dx[3], dy[3]; // edge deltas in sub-pixels
+    DepthPlane depth;
+    int16_t minx, miny, maxx, maxy;  // inclusive pixel box of the samples, within the viewport
+    uint32_t triangle;    // id in the mesh (submission order)
+    uint8_t small;        // vertex box < kSmallExtent: int32 traversal anywhere near the box
+    uint8_t transparent;  // rasterized after the opaque pass, without depth writes
+};
+static_assert(sizeof(TriangleSetup) == 80, "bins copy setups: keep them compact");
+
+enum class SetupResult { drawn, zero_area, culled_face, no_samples };
+
+// Sets up triangle v0 v1 v2 (in submission winding) for `viewport`. Returns drawn when `out`
+// holds a triangle that covers at least one pixel centre of its box.
+SetupResult setup_triangle(const WindowVertex& v0, const WindowVertex& v1, const WindowVertex& v2,
+                           CullMode cull, const Viewport& viewport, TriangleSetup& out);
+
+// D3D11.3 §3.4.2.1 top-left rule for an edge with delta (dX, dY) in top-down window
+// coordinates whose inside lies where dX*(Py - Ya) - dY*(Px - Xa) > 0: a "left" edge goes up
+// the screen (dY < 0), a "top" edge is horizontal with the inside below it (dY == 0, dX > 0).
+inline bool is_top_left(int32_t dX, int32_t dY) { return dY < 0 || (dY == 0 && dX > 0); }
+
+}  // namespace tessera::pipeline

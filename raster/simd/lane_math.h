@@ -1,0 +1,157 @@
+// The arithmetic the shading kernels are written in, once for both lane types: `float` (the
+// scalar reference path, one pixel at a time) and simd::vfloat (kLanes pixels per operation).
+// A kernel is a template over F that calls only what is defined here and in simd.h, so the
+// two instantiations compute the same formula in the same order (the raster library builds
+// with -ffp-contract=off, so float does not fuse where vfloat does not).
+#pragma once
+#include <bit>
+#include <cmath>
+#include <cstdint>
+
+#include "raster/simd/simd.h"
+
+namespace tessera::simd {
+
+using simd::vfloat;
+using simd::vmask;
+
+// Scalar counterparts of simd.h, with the same NaN behaviour as the scalar back end.
+inline float fma(float a, float b, float c) { return std::fma(a, b, c); }
+inline float min(float a, float b) { return a < b ? a : b; }
+inline float max(float a, float b) { return a > b ? a : b; }
+inline float sqrt(float a) { return std::sqrt(a); }
+inline float select(bool m, float a, float b) { return m ? a : b; }
+inline bool both(bool a, bool b) { return a && b; }
+inline bool either(bool a, bool b) { return a || b; }
+inline vmask both(vmask a, vmask b) { return a & b; }
+inline vmask either(vmask a, vmask b) { return a | b; }
+
+// x * 2^e for finite x, split into e = floor(log2 |x|) and a mantissa in [1, 2); x > 0 only.
+inline float exponent_of(float x, float& mantissa) {
+    const uint32_t bits = std::bit_cast<uint32_t>(x);
+    mantissa = std::bit_cast<float>((bits & 0x007FFFFFu) | 0x3F800000u);
+    return float(int32_t(bits >> 23) - 127);
+}
+// 2^n for an integer-valued n in [-126, 127].
+inline float exp2_int(float n) { return std::bit_cast<float>(uint32_t(int32_t(n) + 127) << 23); }
+inline float floor_of(float x) { return std::floor(x); }
+
+#if defined(__AVX512F__)
+inline vfloat exponent_of(vfloat x, vfloat& mantissa) {
+    // The zero-masking forms: GCC 12 warns about the unmasked ones' undefined pass-through.
+    mantissa = _mm512_maskz_getmant_ps(0xFFFF, x.v, _MM_MANT_NORM_1_2, _MM_MANT_SIGN_src);
+    return _mm512_maskz_getexp_ps(0xFFFF, x.v);
+}
+inline vfloat exp2_int(vfloat n) { return _mm512_maskz_scalef_ps(0xFFFF, _mm512_set1_ps(1.0f), n.v); }
+inline simd::vint gather_int(const int32_t* base, simd::vint index) {
+    return _mm512_mask_i32gather_epi32(_mm512_setzero_si512(), 0xFFFF, index.v, base, 4);
+}
+inline vfloat floor_of(vfloat x) { return _mm512_maskz_roundscale_ps(0xFFFF, x.v, _MM_FROUND_TO_NEG_INF); }
+#elif defined(__AVX2__)
+inline vfloat exponent_of(vfloat x, vfloat& mantissa) {
+    const __m256i bits = _mm256_castps_si256(x.v);
+    mantissa = _mm256_castsi256_ps(_mm256_or_si256(_mm256_and_si256(bits, _mm256_set1_epi32(0x007FFFFF)),
+                                                   _mm256_set1_epi32(0x3F800000)));
+    return _mm256_cvtepi32_ps(_mm256_sub_epi32(_mm256_srli_epi32(bits, 23), _mm256_set1_epi32(127)));
+}
+inline vfloat exp2_int(vfloat n) {
+    const __m256i e = _mm256_add_epi32(_mm256_cvtps_epi32(n.v), _mm256_set1_epi32(127));
+    return _mm256_castsi256_ps(_mm256_slli_epi32(e, 23));
+}
+inline vfloat floor_of(vfloat x) { return _mm256_floor_ps(x.v); }
+inline simd::vint gather_int(const int32_t* base, simd::vint index) {
+    return _mm256_i32gather_epi32(base, index.v, 4);
+}
+#else
+inline vfloat exponent_of(vfloat x, vfloat& mantissa) {
+    float m;
+    const float e = exponent_of(x.v, m);
+    mantissa = m;
+    return e;
+}
+inline vfloat exp2_int(vfloat n) { return exp2_int(n.v); }
+inline vfloat floor_of(vfloat x) { return std::floor(x.v); }
+inline simd::vint gather_int(const int32_t* base, simd::vint index) { return base[index.v]; }
+#endif
+
+template <class F>
+F abs_of(F x) {
+    return max(x, F(0.0f) - x);
+}
+
+// log2(x) for finite x > 0: exponent plus log2 of the mantissa m in [1, 2) by the series
+// log2 m = (2 / ln 2) atanh(t), t = (m - 1)/(m + 1) in [0, 1/3), to t^9 (error < 3e-7).
+template <class F>
+F log2_positive(F x) {
+    F m;
+    const F e = exponent_of(x, m);
+    const F t = (m - F(1.0f)) / (m + F(1.0f));
+    const F t2 = t * t;
+    F s = fma(t2, F(1.0f / 9.0f), F(1.0f / 7.0f));
+    s = fma(s, t2, F(1.0f / 5.0f));
+    s = fma(s, t2, F(1.0f / 3.0f));
+    s = fma(s, t2, F(1.0f));
+    return fma(s * t, F(2.8853900817779268f), e);  // 2 / ln 2
+}
+
+// 2^y for y <= 0 (values below -126 give 0): 2^floor(y) times a degree-7 Taylor polynomial
+// of 2^f = e^(f ln 2), f in [0, 1) (relative error < 2e-6).
+template <class F>
+F exp2_nonpositive(F y) {
+    const F yc = max(y, F(-126.0f));
+    const F n = floor_of(yc);
+    const F f = (yc - n) * F(0.69314718055994531f);
+    F p = fma(f, F(1.0f / 5040.0f), F(1.0f / 720.0f));
+    p = fma(p, f, F(1.0f / 120.0f));
+    p = fma(p, f, F(1.0f / 24.0f));
+    p = fma(p, f, F(1.0f / 6.0f));
+    p = fma(p, f, F(0.5f));
+    p = fma(p, f, F(1.0f));
+    p = fma(p, f, F(1.0f));
+    return select(y < F(-126.0f), F(0.0f), p * exp2_int(n));
+}
+
+// x^y for x in [0, 1] and y >= 0: the specular term cos(delta)^shine. 0^y = 0 for y > 0 and
+// x^0 = 1 (OpenGL leaves 0^0 undefined; 1 is what GLSL implementations return).
+template <class F>
+F pow01(F x, F y) {
+    const F safe = max(x, F(1e-30f));
+    const F r = exp2_nonpositive(y * log2_positive(safe));
+    return select(y <= F(0.0f), F(1.0f), select(x <= F(0.0f), F(0.0f), r));
+}
+
+template <class F>
+struct V3 {
+    F x, y, z;
+};
+template <class F>
+V3<F> operator+(V3<F> a, V3<F> b) { return {a.x + b.x, a.y + b.y, a.z + b.z}; }
+template <class F>
+V3<F> operator-(V3<F> a, V3<F> b) { return {a.x - b.x, a.y - b.y, a.z - b.z}; }
+template <class F>
+V3<F> operator*(V3<F> a, F s) { return {a.x * s, a.y * s, a.z * s}; }
+template <class F>
+V3<F> operator*(V3<F> a, V3<F> b) { return {a.x * b.x, a.y * b.y, a.z * b.z}; }
+template <class F>
+F dot(V3<F> a, V3<F> b) { return fma(a.x, b.x, fma(a.y, b.y, a.z * b.z)); }
+template <class F>
+V3<F> cross(V3<F> a, V3<F> b) {
+    return {a.y * b.z - a.z * b.y, a.z * b.x - a.x * b.z, a.x * b.y - a.y * b.x};
+}
+template <class F, class M>
+V3<F> select(M m, V3<F> a, V3<F> b) {
+    return {select(m, a.x, b.x), select(m, a.y, b.y), select(m, a.z, b.z)};
+}
+// a * s + b, per component.
+template <class F>
+V3<F> madd(V3<F> a, F s, V3<F> b) { return {fma(a.x, s, b.x), fma(a.y, s, b.y), fma(a.z, s, b.z)}; }
+// Unit vector along v, or `fallback` where v has zero (or non-finite) length.
+template <class F>
+V3<F> normalize_or(V3<F> v, V3<F> fallback) {
+    const F len2 = dot(v, v);
+    const auto ok = both(F(1e-30f) < len2, len2 < F(3.0e38f));
+    const F inv = F(1.0f) / sqrt(select(ok, len2, F(1.0f)));
+    return select(ok, v * inv, fallback);
+}
+
+}  // namespace tessera::simd
