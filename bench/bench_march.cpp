@@ -177,7 +177,7 @@ void BM_FogPass(benchmark::State& state) {
     std::vector<float> depth(W * H);
     std::vector<glm::vec4> colour(W * H, glm::vec4(0.5f));
     for (int i = 0; i < W * H; ++i) depth[i] = i % W < W / 2 ? 0.97f : 1.0f;
-    const PassTarget target{0, 0, W, H, depth.data(), W, colour.data(), W, nullptr};
+    const Tile target{{0, 0, W, H}, nullptr, depth.data(), W, colour.data(), W};
     for (auto _ : state) {
         pass.run(target);
         benchmark::DoNotOptimize(colour.data());
@@ -193,7 +193,7 @@ void BM_BackgroundSky(benchmark::State& state) {
     const BackgroundPass pass(rays, sky);
     std::vector<float> depth(W * H, 1.0f);
     std::vector<glm::vec4> colour(W * H);
-    const PassTarget target{0, 0, W, H, depth.data(), W, colour.data(), W, nullptr};
+    const Tile target{{0, 0, W, H}, nullptr, depth.data(), W, colour.data(), W};
     for (auto _ : state) {
         pass.run(target);
         benchmark::DoNotOptimize(colour.data());

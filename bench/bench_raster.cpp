@@ -190,7 +190,7 @@ void BM_Binning(benchmark::State& state) {
     const size_t triangles = size_t(state.range(0)) * 1000;
     const int tile = int(state.range(1));
     pipeline::ChunkBins chunk = sphere_setups(triangles);
-    const pipeline::TileGrid grid(1920, 1080, tile);
+    const TileGrid grid(1920, 1080, tile);
     std::vector<uint32_t> scratch;
     for (auto _ : state) {
         chunk.bin(grid, scratch);
@@ -210,14 +210,14 @@ void BM_TileRaster(benchmark::State& state) {
     const size_t triangles = size_t(state.range(0)) * 1000;
     const int tile = int(state.range(1));
     pipeline::ChunkBins chunk = sphere_setups(triangles);
-    const pipeline::TileGrid grid(1920, 1080, tile);
+    const TileGrid grid(1920, 1080, tile);
     std::vector<uint32_t> scratch;
     chunk.bin(grid, scratch);
     pipeline::TileBuffers buffers;
     for (auto _ : state) {
         for (int t = 0; t < grid.count(); ++t) {
             const int tx = t % grid.tiles_x, ty = t / grid.tiles_x;
-            const pipeline::TileRect rect{tx * tile, ty * tile, std::min((tx + 1) * tile, 1920), std::min((ty + 1) * tile, 1080)};
+            const TileRect rect{tx * tile, ty * tile, std::min((tx + 1) * tile, 1920), std::min((ty + 1) * tile, 1080)};
             buffers.clear(tile);
             for (const pipeline::TriangleSetup* e = chunk.begin(t); e != chunk.end(t); ++e)
                 pipeline::rasterize_opaque(*e, rect, buffers);

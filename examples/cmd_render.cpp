@@ -100,12 +100,6 @@ void remove_stale_temporaries(const std::vector<fs::path>& frames) {
     }
 }
 
-double median(std::vector<double> v) {
-    if (v.empty()) return 0.0;
-    std::sort(v.begin(), v.end());
-    return v.size() % 2 ? v[v.size() / 2] : 0.5 * (v[v.size() / 2 - 1] + v[v.size() / 2]);
-}
-
 int run(const Options& o, const std::string& executable) {
     const auto guard = limit_threads(o.threads);
     // Scene.

@@ -83,11 +83,16 @@ pipeline::CullMode parse_cull(const std::string& text) {
     throw UsageError("--cull expects none, back or front, got '" + text + "'");
 }
 
-void print_frame_times(std::vector<double> ms) {
-    std::sort(ms.begin(), ms.end());
-    const size_t n = ms.size();
-    const double median = n % 2 ? ms[n / 2] : 0.5 * (ms[n / 2 - 1] + ms[n / 2]);
-    std::printf("frame_ms median=%.3f min=%.3f max=%.3f\n", median, ms.front(), ms.back());
+double median(std::vector<double> values) {
+    if (values.empty()) return 0.0;
+    std::sort(values.begin(), values.end());
+    const size_t n = values.size();
+    return n % 2 ? values[n / 2] : 0.5 * (values[n / 2 - 1] + values[n / 2]);
+}
+
+void print_frame_times(const std::vector<double>& ms) {
+    const auto [least, most] = std::minmax_element(ms.begin(), ms.end());
+    std::printf("frame_ms median=%.3f min=%.3f max=%.3f\n", median(ms), *least, *most);
 }
 
 void add_threads_option(CLI::App& command, int& threads) {

@@ -61,9 +61,12 @@ Camera make_camera(const CameraFlags& flags, int width, int height);
 // "none" | "back" | "front" (--cull); UsageError otherwise.
 pipeline::CullMode parse_cull(const std::string& text);
 
-// Prints "frame_ms median=X min=Y max=Z" (the median of an even count: the mean of the middle
-// two), the line `tessera raster --repeat` and the peer print for the benchmark scripts.
-void print_frame_times(std::vector<double> ms);
+// The median of `values` (of an even count: the mean of the middle two); 0 when empty.
+double median(std::vector<double> values);
+
+// Prints "frame_ms median=X min=Y max=Z" for a non-empty `ms`, the line `tessera raster
+// --repeat` and the peer print for the benchmark scripts.
+void print_frame_times(const std::vector<double>& ms);
 
 // Adds the common "--threads N" option (0, the default, means every core) to `command`.
 void add_threads_option(CLI::App& command, int& threads);

@@ -169,7 +169,7 @@ TEST(ShadowMap, SimdLookupEqualsScalarReference) {
     const int w = 320, h = 180;
     rasterizer.render(grid.mesh, vp, pipeline::Viewport(w, h), pipeline::RasterOptions{}, vis);
     SurfacePoints points;
-    gather_surface_points(vis, grid.mesh, PixelRays(vp, w, h), ImageTile{0, 0, w, h}, points);
+    gather_surface_points(vis, grid.mesh, PixelRays(vp, w, h), TileRect{0, 0, w, h}, points);
     const size_t from_frame = points.size();
     ASSERT_GT(from_frame, 20000u);
     procedural::SplitMix64 random(6);

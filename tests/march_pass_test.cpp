@@ -25,10 +25,10 @@ constexpr int W = 40, H = 32;
 struct Frame {
     std::vector<float> depth = std::vector<float>(W * H, 1.0f);
     std::vector<glm::vec4> colour = std::vector<glm::vec4>(W * H, glm::vec4(0.0f));
-    PassTarget tile(int x0, int y0, int x1, int y1) {
-        return {x0, y0, x1, y1, depth.data() + y0 * W + x0, W, colour.data() + y0 * W + x0, W};
+    Tile tile(int x0, int y0, int x1, int y1) {
+        return {{x0, y0, x1, y1}, nullptr, depth.data() + y0 * W + x0, W, colour.data() + y0 * W + x0, W};
     }
-    PassTarget all() { return tile(0, 0, W, H); }
+    Tile all() { return tile(0, 0, W, H); }
 };
 
 scene::Background sky_background() {
@@ -113,7 +113,7 @@ TEST(MarchPass, TilesGiveTheSameBytesAsOneRectangle) {
     // Odd tile sizes, visited in reverse order.
     for (int ty = H; ty > 0; ty -= 13)
         for (int tx = W; tx > 0; tx -= 11) {
-            const PassTarget t = tiled.tile(std::max(0, tx - 11), std::max(0, ty - 13), tx, ty);
+            const Tile t = tiled.tile(std::max(0, tx - 11), std::max(0, ty - 13), tx, ty);
             pass.run(t);
             background.run(t);
             fog_pass.run(t);

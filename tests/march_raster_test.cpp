@@ -37,7 +37,7 @@ Mesh quad() {
 void paint(const pipeline::TileContext& tile) {
     for (int y = 0; y < tile.height(); ++y)
         for (int x = 0; x < tile.width(); ++x)
-            if (tile.triangle[y * tile.stride + x] != kNoTriangle) tile.color[y * tile.color_stride + x] = kGreen;
+            if (tile.triangle[y * tile.stride + x] != kNoTriangle) tile.colour[y * tile.colour_stride + x] = kGreen;
 }
 
 struct Result {

@@ -182,7 +182,7 @@ TEST(RasterPipeline, TilePassesSeeEveryPixelOnce) {
                 for (int x = ctx.rect.x0; x < ctx.rect.x1; ++x) {
                     ++visits[size_t(y) * w + x];
                     const size_t i = size_t(y - ctx.rect.y0) * ctx.stride + (x - ctx.rect.x0);
-                    ctx.color[size_t(y - ctx.rect.y0) * ctx.color_stride + (x - ctx.rect.x0)] =
+                    ctx.colour[size_t(y - ctx.rect.y0) * ctx.colour_stride + (x - ctx.rect.x0)] =
                         glm::vec4(float(ctx.triangle[i] % 7), ctx.depth[i], float(x), float(y));
                 }
         }};

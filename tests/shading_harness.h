@@ -76,7 +76,7 @@ inline VisibilityBuffer cast_visibility(const scene::BakedScene& baked, const sc
 inline Frame render_scene(const scene::Scene& scene, int width, int height) {
     const scene::BakedScene baked = scene::bake(scene);
     std::vector<float> nearest;
-    const VisibilityBuffer vis = cast_visibility(baked, scene, width, height, &nearest);
+    VisibilityBuffer vis = cast_visibility(baked, scene, width, height, &nearest);
     shade::RenderState state{scene.camera, width, height, scene.lights};
     const shade::FrameShading shading(baked, scene, state);
     Frame frame = shade::shade_visibility(shading, vis);
@@ -93,9 +93,8 @@ inline Frame render_scene(const scene::Scene& scene, int width, int height) {
                     transparent.push_back({x, y, uint32_t(t)});
             }
     }
-    shade::TileTarget whole;
-    whole.width = width;
-    whole.height = height;
+    Tile whole;
+    whole.rect = {0, 0, width, height};
     whole.colour = frame.pixels.data();
     whole.colour_stride = size_t(width);
     shade::blend_fragments(shading, transparent, whole);

@@ -14,6 +14,12 @@
 
 namespace tessera {
 
+// Wall milliseconds since `start`: how the stages time themselves for --stats.
+using Clock = std::chrono::steady_clock;
+inline double ms_since(Clock::time_point start) {
+    return std::chrono::duration<double, std::milli>(Clock::now() - start).count();
+}
+
 class Trace {
 public:
     Trace();

@@ -62,7 +62,7 @@ struct Frame {
     }
 };
 
-void trace_single(const Frame& frame, const ImageTile& tile) {
+void trace_single(const Frame& frame, const TileRect& tile) {
     SkipContext skip = make_context(false, frame.skip);
     RTCIntersectContext& context = skip.context;
     DepthCache cache;
@@ -88,7 +88,7 @@ void trace_single(const Frame& frame, const ImageTile& tile) {
 }
 
 template <int N>
-void trace_packets(const Frame& frame, const ImageTile& tile) {
+void trace_packets(const Frame& frame, const TileRect& tile) {
     using P = Packet<N>;
     SkipContext skip = make_context(true, frame.skip);
     RTCIntersectContext& context = skip.context;
@@ -125,7 +125,7 @@ void cast_primary_rays(const RayScene& scene, const glm::mat4& view_projection, 
     const PixelRays rays(view_projection, width, height);
     out.reset(width, height);
     const Frame frame{scene, rays, out, skip};
-    parallel_for_tiles(width, height, [&](const ImageTile& tile) {
+    parallel_for_tiles(TileGrid(width, height, kRayTileSize), [&](int, const TileRect& tile) {
         const FlushDenormals flush;  // Embree's per-thread recommendation (device.h)
         switch (packet) {
             case RayPacket::single: trace_single(frame, tile); break;

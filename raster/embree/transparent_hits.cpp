@@ -35,7 +35,7 @@ void collect_filter(const RTCFilterFunctionNArguments* args) {
 }  // namespace
 
 void for_each_transparent_hit(const RayScene& scene, const PixelRays& rays, std::span<const uint8_t> transparent,
-                              const VisibilityBuffer& opaque, const ImageTile& tile,
+                              const VisibilityBuffer& opaque, const TileRect& tile,
                               const std::function<void(uint32_t, std::span<const pipeline::Fragment>)>& blend) {
     using P = Packet<16>;
     std::vector<Hit> hits;

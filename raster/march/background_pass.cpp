@@ -2,9 +2,9 @@
 
 namespace tessera::march {
 
-void BackgroundPass::run(const PassTarget& target) const {
-    for (int y = target.y0; y < target.y1; ++y)
-        for (int x = target.x0; x < target.x1; ++x)
+void BackgroundPass::run(const Tile& target) const {
+    for (int y = target.rect.y0; y < target.rect.y1; ++y)
+        for (int x = target.rect.x0; x < target.rect.x1; ++x)
             if (!(target.depth_at(x, y) < 1.0f))
                 target.colour_at(x, y) = glm::vec4(shade::background_radiance(background_, rays_.direction(x, y)), 1.0f);
 }

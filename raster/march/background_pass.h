@@ -4,7 +4,7 @@
 // opaque shading pass already paints empty pixels this way; this pass is for frames that have
 // no triangles to shade (pure ray-marched scenes).
 #pragma once
-#include "raster/march/pass_target.h"
+#include "raster/core/tile.h"
 #include "raster/march/ray_generation.h"
 #include "raster/shade/background_radiance.h"
 
@@ -16,7 +16,7 @@ public:
     BackgroundPass(const RayGenerator& rays, const scene::Background& background)
         : rays_(rays), background_(background) {}
 
-    void run(const PassTarget& target) const;
+    void run(const Tile& target) const;
 
 private:
     const RayGenerator& rays_;

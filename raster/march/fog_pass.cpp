@@ -6,10 +6,10 @@ FogPass::FogPass(const RayGenerator& rays, const Fog& fog) : rays_(rays), fog_(f
     fog_.validate();
 }
 
-void FogPass::run(const PassTarget& target) const {
+void FogPass::run(const Tile& target) const {
     if (!fog_.enabled()) return;
-    for (int y = target.y0; y < target.y1; ++y)
-        for (int x = target.x0; x < target.x1; ++x) {
+    for (int y = target.rect.y0; y < target.rect.y1; ++y)
+        for (int x = target.rect.x0; x < target.rect.x1; ++x) {
             glm::vec4& c = target.colour_at(x, y);
             const float distance = rays_.distance_from_depth(x, y, target.depth_at(x, y));
             const glm::vec3 seen = fog_.apply(glm::vec3(c), rays_.eye(), rays_.direction(x, y), distance);

@@ -5,7 +5,7 @@
 // T colour + (1 - T) fog colour with the closed-form transmittance of fog.h.
 #pragma once
 #include "raster/march/fog.h"
-#include "raster/march/pass_target.h"
+#include "raster/core/tile.h"
 #include "raster/march/ray_generation.h"
 
 namespace tessera::march {
@@ -15,7 +15,7 @@ public:
     // Validates the fog (std::invalid_argument); the generator is borrowed.
     FogPass(const RayGenerator& rays, const Fog& fog);
 
-    void run(const PassTarget& target) const;
+    void run(const Tile& target) const;
 
 private:
     const RayGenerator& rays_;

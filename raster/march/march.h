@@ -1,6 +1,6 @@
 // The ray marcher (seeds/003): sample f along the ray from t0 with the step schedule of
 // MarchSettings, stop at the first sample inside the solid (f >= 0), then refine the last
-// bracket by bisection. Generic over any ImplicitField.
+// bracket by bisection. Generic over any MarchField.
 //
 // march_ray is the scalar reference: one ray, no packets. march_packet marches kMarchLanes
 // rays in lockstep with the same arithmetic per lane, evaluating the field for all lanes at
@@ -16,7 +16,7 @@
 #include <cstdint>
 #include <limits>
 
-#include "raster/march/implicit_field.h"
+#include "raster/march/march_field.h"
 #include "raster/march/march_settings.h"
 #include "raster/march/ray_packet.h"
 #include "raster/simd/simd.h"
@@ -28,7 +28,7 @@ inline constexpr float kMiss = std::numeric_limits<float>::infinity();
 namespace detail {
 // Bisection on [outside, inside] (f < 0 at outside, f >= 0 at inside) until the bracket is no
 // wider than the tolerance or cannot shrink in float; returns the midpoint.
-template <ImplicitField F>
+template <MarchField F>
 float bisect(const F& field, glm::vec3 o, glm::vec3 d, float outside, float inside,
              float tolerance) {
     while (inside - outside > tolerance) {
@@ -45,7 +45,7 @@ float bisect(const F& field, glm::vec3 o, glm::vec3 d, float outside, float insi
 
 // The first surface crossing of the ray o + t d (|d| = 1) within `segment`, or kMiss.
 // `settings` must have been validated.
-template <ImplicitField F>
+template <MarchField F>
 float march_ray(const F& field, glm::vec3 o, glm::vec3 d, Interval segment,
                 const MarchSettings& settings) {
     if (segment.empty()) return kMiss;
@@ -73,7 +73,7 @@ struct PacketSegments {
 // Marches every live lane of `rays`; t_hit[i] receives what march_ray would return for lane i.
 // The per-lane state is one simd::vfloat per quantity and the lane bookkeeping is masks; only
 // the field is called through arrays (evaluate_lanes), since fields choose their own SIMD.
-template <ImplicitField F>
+template <MarchField F>
 void march_packet(const F& field, const RayPacket& rays, const PacketSegments& segments,
                   const MarchSettings& settings, float* t_hit) {
     using simd::vfloat;

@@ -74,11 +74,11 @@ Camera scene_camera(MarchSceneKind kind, float t, float aspect) {
 }
 
 template <class Surface>
-std::function<void(const PassTarget&)> surface_pass(Surface surface, const RayGenerator& rays,
+std::function<void(const Tile&)> surface_pass(Surface surface, const RayGenerator& rays,
                                                     const MarchSceneSettings& s) {
     const SurfaceLook look{s.material, SurfaceLook{}.lights, s.normals};
     auto pass = std::make_shared<SurfacePass<Surface>>(surface, rays, s.march, look, s.background);
-    return [pass](const PassTarget& target) { pass->run(target); };
+    return [pass](const Tile& target) { pass->run(target); };
 }
 
 }  // namespace
@@ -117,9 +117,9 @@ MarchScene::MarchScene(const MarchSceneSettings& settings, int width, int height
         break;
     }
     auto background = std::make_shared<BackgroundPass>(rays, settings_.background);
-    background_ = [background](const PassTarget& t) { background->run(t); };
+    background_ = [background](const Tile& t) { background->run(t); };
     auto fog = std::make_shared<FogPass>(rays, settings_.fog);
-    fog_ = [fog](const PassTarget& t) { fog->run(t); };
+    fog_ = [fog](const Tile& t) { fog->run(t); };
 }
 
 MarchScene::~MarchScene() = default;
@@ -127,7 +127,7 @@ MarchScene::~MarchScene() = default;
 std::vector<pipeline::TilePass> MarchScene::passes() const {
     std::vector<pipeline::TilePass> out;
     for (const auto* pass : {&background_, &surface_, &fog_})
-        out.push_back([pass](const pipeline::TileContext& tile) { (*pass)(pass_target(tile)); });
+        out.push_back([pass](const pipeline::TileContext& tile) { (*pass)(tile); });
     return out;
 }
 

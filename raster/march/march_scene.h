@@ -14,7 +14,7 @@
 #include "raster/march/fog.h"
 #include "raster/march/march_settings.h"
 #include "raster/march/metaball_kernel.h"
-#include "raster/march/pass_target.h"
+#include "raster/core/tile.h"
 #include "raster/march/ray_generation.h"
 #include "raster/march/surface_normal.h"
 #include "raster/march/surface_shading.h"
@@ -68,9 +68,9 @@ private:
     Camera camera_;
     std::unique_ptr<RayGenerator> rays_;
     std::unique_ptr<Fields> fields_;
-    std::function<void(const PassTarget&)> surface_;
-    std::function<void(const PassTarget&)> background_;
-    std::function<void(const PassTarget&)> fog_;
+    std::function<void(const Tile&)> surface_;
+    std::function<void(const Tile&)> background_;
+    std::function<void(const Tile&)> fog_;
 };
 
 }  // namespace tessera::march

@@ -7,13 +7,13 @@
 // - MetaballSurface: metaballs, culled per packet to the balls the packet's rays cross.
 #pragma once
 #include "raster/march/bounds.h"
-#include "raster/march/implicit_field.h"
+#include "raster/march/march_field.h"
 #include "raster/march/march.h"
 #include "raster/march/metaball_field.h"
 
 namespace tessera::march {
 
-template <ImplicitField F>
+template <MarchField F>
 struct SlabSurface {
     const F& field;
     Slab slab;

@@ -11,7 +11,7 @@
 #include <stdexcept>
 #include <string>
 
-#include "raster/march/implicit_field.h"
+#include "raster/march/march_field.h"
 
 namespace tessera::march {
 
@@ -28,7 +28,7 @@ struct NormalSettings {
     }
 };
 
-template <ImplicitField F>
+template <MarchField F>
 glm::vec3 central_difference_gradient(const F& field, glm::vec3 p, float h) {
     const glm::vec3 dx(h, 0.0f, 0.0f), dy(0.0f, h, 0.0f), dz(0.0f, 0.0f, h);
     return glm::vec3(field.value(p + dx) - field.value(p - dx),
@@ -39,7 +39,7 @@ glm::vec3 central_difference_gradient(const F& field, glm::vec3 p, float h) {
 
 // The unit outward normal at p; (0, 1, 0) where the gradient vanishes (a degenerate point
 // has no direction, and "up" shades plausibly).
-template <ImplicitField F>
+template <MarchField F>
 glm::vec3 surface_normal(const F& field, glm::vec3 p, const NormalSettings& settings) {
     const glm::vec3 g = settings.method == NormalMethod::analytic
                             ? glm::vec3(field.gradient(p))

@@ -17,7 +17,7 @@
 
 #include "raster/march/march.h"
 #include "raster/march/march_settings.h"
-#include "raster/march/pass_target.h"
+#include "raster/core/tile.h"
 #include "raster/march/ray_generation.h"
 #include "raster/march/surface_normal.h"
 #include "raster/march/surface_shading.h"
@@ -46,15 +46,15 @@ public:
         look_.normals.validate();
     }
 
-    void run(const PassTarget& target) const {
+    void run(const Tile& target) const {
         typename Surface::Scratch scratch{};
-        for (int y = target.y0; y < target.y1; ++y)
-            for (int x = target.x0; x < target.x1; x += kMarchLanes)
-                run_packet(target, x, y, std::min(kMarchLanes, target.x1 - x), scratch);
+        for (int y = target.rect.y0; y < target.rect.y1; ++y)
+            for (int x = target.rect.x0; x < target.rect.x1; x += kMarchLanes)
+                run_packet(target, x, y, std::min(kMarchLanes, target.rect.x1 - x), scratch);
     }
 
 private:
-    void run_packet(const PassTarget& target, int x0, int y, int count,
+    void run_packet(const Tile& target, int x0, int y, int count,
                     typename Surface::Scratch& scratch) const {
         RayPacket packet;
         rays_.packet(x0, y, count, packet);
@@ -81,7 +81,7 @@ private:
             if (!(depth < stored)) continue;  // behind what is already there
             stored = depth;
             if (target.triangle)
-                target.triangle[size_t(y - target.y0) * target.depth_stride + size_t(x0 + i - target.x0)] =
+                target.triangle_at(x0 + i, y) =
                     kNoTriangle;
             const glm::vec3 n = surface_normal(field, p, look_.normals);
             const glm::vec3 c = shade_surface(look_.material, look_.lights, background_, p,

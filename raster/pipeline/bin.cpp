@@ -6,22 +6,16 @@
 
 namespace tessera::pipeline {
 
-TileGrid::TileGrid(int w, int h, int tile_size) : size(tile_size), width(w), height(h) {
-    if (tile_size < 16 || tile_size > 256 || !std::has_single_bit(unsigned(tile_size)))
-        throw std::invalid_argument("tile size " + std::to_string(tile_size) +
-                                    " must be a power of two in 16 .. 256");
-    shift = std::countr_zero(unsigned(tile_size));
-    tiles_x = (w + size - 1) >> shift;
-    tiles_y = (h + size - 1) >> shift;
-}
-
 void ChunkBins::bin(const TileGrid& grid, std::vector<uint32_t>& count) {
+    if (!std::has_single_bit(unsigned(grid.size)))
+        throw std::invalid_argument("binning needs tiles of a power-of-two size, not " + std::to_string(grid.size));
+    const int shift = std::countr_zero(unsigned(grid.size));
     const int tiles = grid.count();
     count.assign(size_t(tiles) + 1, 0);
     // Pass 1: how many entries each tile gets (the tiles of each setup's box).
     for (const TriangleSetup& t : setups) {
-        const int tx0 = t.minx >> grid.shift, tx1 = t.maxx >> grid.shift;
-        const int ty0 = t.miny >> grid.shift, ty1 = t.maxy >> grid.shift;
+        const int tx0 = t.minx >> shift, tx1 = t.maxx >> shift;
+        const int ty0 = t.miny >> shift, ty1 = t.maxy >> shift;
         if (tx0 == tx1 && ty0 == ty1) {  // most triangles touch one tile
             ++count[size_t(ty0) * grid.tiles_x + tx0 + 1];
             continue;
@@ -36,8 +30,8 @@ void ChunkBins::bin(const TileGrid& grid, std::vector<uint32_t>& count) {
     entries.resize(offsets[tiles]);
     for (int t = 0; t < tiles; ++t) count[t] = offsets[t];
     for (const TriangleSetup& s : setups) {
-        const int tx0 = s.minx >> grid.shift, tx1 = s.maxx >> grid.shift;
-        const int ty0 = s.miny >> grid.shift, ty1 = s.maxy >> grid.shift;
+        const int tx0 = s.minx >> shift, tx1 = s.maxx >> shift;
+        const int ty0 = s.miny >> shift, ty1 = s.maxy >> shift;
         if (tx0 == tx1 && ty0 == ty1) {
             entries[count[size_t(ty0) * grid.tiles_x + tx0]++] = s;
             continue;

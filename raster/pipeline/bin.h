@@ -10,21 +10,10 @@
 #include <cstdint>
 #include <vector>
 
+#include "raster/core/tile.h"
 #include "raster/pipeline/triangle_setup.h"
 
 namespace tessera::pipeline {
-
-// The screen cut into square tiles of `size` pixels (the last row/column may be partial).
-struct TileGrid {
-    int size = 64;
-    int shift = 6;  // log2(size)
-    int tiles_x = 0, tiles_y = 0;
-    int width = 0, height = 0;
-
-    TileGrid() = default;
-    TileGrid(int width, int height, int tile_size);  // tile_size: 16 .. 256, a power of two
-    int count() const { return tiles_x * tiles_y; }
-};
 
 // One chunk's triangle setups and their per-tile bins (counting-sorted by tile).
 struct ChunkBins {
@@ -32,7 +21,8 @@ struct ChunkBins {
     std::vector<TriangleSetup> entries;  // copies grouped by tile, in setup order per tile
     std::vector<uint32_t> offsets;       // bin of tile t = entries[offsets[t] .. offsets[t+1])
 
-    // Builds entries/offsets from `setups`. `scratch` is reused storage.
+    // Builds entries/offsets from `setups` for `grid` (tiles of a power-of-two size).
+    // `scratch` is reused storage.
     void bin(const TileGrid& grid, std::vector<uint32_t>& scratch);
 
     const TriangleSetup* begin(int tile) const { return entries.data() + offsets[tile]; }

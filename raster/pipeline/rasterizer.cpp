@@ -6,6 +6,8 @@
 
 #include <algorithm>
 #include <atomic>
+#include <bit>
+#include <string>
 #include <chrono>
 #include <cstring>
 
@@ -17,10 +19,6 @@ namespace tessera::pipeline {
 
 namespace {
 
-using Clock = std::chrono::steady_clock;
-double ms_since(Clock::time_point start) {
-    return std::chrono::duration<double, std::milli>(Clock::now() - start).count();
-}
 
 // Per-thread storage of the tile stage, reused across tiles and frames.
 struct TileScratch {
@@ -78,6 +76,9 @@ void Rasterizer::render(const Mesh& mesh, const glm::mat4& view_projection, cons
         throw std::invalid_argument("mesh too large: at most 2^31 - 1 vertices and triangles");
     if (!options.transparent.empty() && options.transparent.size() != triangle_count)
         throw std::invalid_argument("RasterOptions::transparent must be empty or hold one flag per triangle");
+    if (options.tile_size < 16 || options.tile_size > 256 || !std::has_single_bit(unsigned(options.tile_size)))
+        throw std::invalid_argument("tile size " + std::to_string(options.tile_size) +
+                                    " must be a power of two in 16 .. 256");
     s.grid = TileGrid(viewport.width, viewport.height, options.tile_size);
     const TileGrid& grid = s.grid;
 
@@ -124,59 +125,54 @@ void Rasterizer::render(const Mesh& mesh, const glm::mat4& view_projection, cons
     const bool run_passes = color || !passes.empty();
     std::atomic<uint64_t> visible_pixels{0};
     std::atomic<int64_t> pass_ns{0};
-    tbb::parallel_for(tbb::blocked_range<int>(0, grid.count(), 1), [&](const tbb::blocked_range<int>& r) {
+    parallel_for_tiles(grid, [&](int tile, const TileRect& rect) {
         TileScratch& scratch = s.scratch.local();
-        for (int tile = r.begin(); tile != r.end(); ++tile) {
-            const int tx = tile % grid.tiles_x, ty = tile / grid.tiles_x;
-            const TileRect rect{tx * grid.size, ty * grid.size, std::min((tx + 1) * grid.size, grid.width),
-                                std::min((ty + 1) * grid.size, grid.height)};
-            TraceScope trace("raster tile", "tile", rect.x0, rect.y0);
-            TileBuffers& buffers = scratch.buffers;
-            if (buffers.size != grid.size) buffers.clear(grid.size);  // else flush() cleared them
-            for (const ChunkBins& chunk : s.chunks)
-                for (const TriangleSetup* e = chunk.begin(tile); e != chunk.end(tile); ++e) {
-                    const TriangleSetup& t = *e;
-                    if (t.transparent) continue;
-                    if (options.depth_only) rasterize_depth(t, rect, buffers);
-                    else rasterize_opaque(t, rect, buffers);
-                }
-
-            // Visibility out: stamp-swizzled tile to row-major frame.
-            const int w = rect.x1 - rect.x0, h = rect.y1 - rect.y0;
-            const size_t origin = size_t(rect.y0) * viewport.width + rect.x0;
-            // Without passes nothing reads the tile again during the frame: stream it out.
-            buffers.flush(w, h, options.depth_only ? nullptr : visibility.triangle.data() + origin,
-                          visibility.depth.data() + origin, size_t(viewport.width), !run_passes);
-            if (stats && !options.depth_only) {
-                uint64_t visible = 0;
-                for (int y = 0; y < h; ++y)
-                    for (int x = 0; x < w; ++x)
-                        visible += visibility.triangle[origin + size_t(y) * viewport.width + x] != kNoTriangle;
-                visible_pixels += visible;
+        TraceScope trace("raster tile", "tile", rect.x0, rect.y0);
+        TileBuffers& buffers = scratch.buffers;
+        if (buffers.size != grid.size) buffers.clear(grid.size);  // else flush() cleared them
+        for (const ChunkBins& chunk : s.chunks)
+            for (const TriangleSetup* e = chunk.begin(tile); e != chunk.end(tile); ++e) {
+                const TriangleSetup& t = *e;
+                if (t.transparent) continue;
+                if (options.depth_only) rasterize_depth(t, rect, buffers);
+                else rasterize_opaque(t, rect, buffers);
             }
-            if (!run_passes) continue;
 
-            const auto pass_start = Clock::now();
-            if (options.tile_color) scratch.color.assign(size_t(grid.size) * grid.size, options.clear_color);
-            TileWork work{&s.chunks, tile, &scratch.fragments};
-            TileContext context;
-            context.rect = rect;
-            context.viewport = &viewport;
-            context.mesh = &mesh;
-            context.clip = &s.vertices;
-            context.triangle = visibility.triangle.data() + origin;
-            context.depth = visibility.depth.data() + origin;
-            context.stride = size_t(viewport.width);
-            context.color = options.tile_color ? scratch.color.data() : nullptr;
-            context.color_stride = size_t(grid.size);
-            context.work = &work;
-            for (const TilePass& pass : passes) pass(context);
-            if (color)
-                for (int y = 0; y < h; ++y)
-                    std::memcpy(color->data() + size_t(rect.y0 + y) * viewport.width + rect.x0,
-                                scratch.color.data() + size_t(y) * grid.size, size_t(w) * sizeof(glm::vec4));
-            if (stats) pass_ns += std::chrono::duration_cast<std::chrono::nanoseconds>(Clock::now() - pass_start).count();
+        // Visibility out: stamp-swizzled tile to row-major frame.
+        const int w = rect.width(), h = rect.height();
+        const size_t origin = size_t(rect.y0) * viewport.width + rect.x0;
+        // Without passes nothing reads the tile again during the frame: stream it out.
+        buffers.flush(w, h, options.depth_only ? nullptr : visibility.triangle.data() + origin,
+                      visibility.depth.data() + origin, size_t(viewport.width), !run_passes);
+        if (stats && !options.depth_only) {
+            uint64_t visible = 0;
+            for (int y = 0; y < h; ++y)
+                for (int x = 0; x < w; ++x)
+                    visible += visibility.triangle[origin + size_t(y) * viewport.width + x] != kNoTriangle;
+            visible_pixels += visible;
         }
+        if (!run_passes) return;
+
+        const auto pass_start = Clock::now();
+        if (options.tile_color) scratch.color.assign(size_t(grid.size) * grid.size, options.clear_color);
+        TileWork work{&s.chunks, tile, &scratch.fragments};
+        TileContext context;
+        context.rect = rect;
+        context.triangle = visibility.triangle.data() + origin;
+        context.depth = visibility.depth.data() + origin;
+        context.stride = size_t(viewport.width);
+        context.colour = options.tile_color ? scratch.color.data() : nullptr;
+        context.colour_stride = size_t(grid.size);
+        context.viewport = &viewport;
+        context.mesh = &mesh;
+        context.clip = &s.vertices;
+        context.work = &work;
+        for (const TilePass& pass : passes) pass(context);
+        if (color)
+            for (int y = 0; y < h; ++y)
+                std::memcpy(color->data() + size_t(rect.y0 + y) * viewport.width + rect.x0,
+                            scratch.color.data() + size_t(y) * grid.size, size_t(w) * sizeof(glm::vec4));
+        if (stats) pass_ns += std::chrono::duration_cast<std::chrono::nanoseconds>(Clock::now() - pass_start).count();
     });
 
     if (stats) {

@@ -13,6 +13,7 @@
 #include <span>
 
 #include "raster/core/mesh.h"
+#include "raster/core/tile.h"
 #include "raster/pipeline/tile_raster.h"
 #include "raster/pipeline/vertex_stage.h"
 #include "raster/pipeline/viewport.h"
@@ -21,27 +22,15 @@ namespace tessera::pipeline {
 
 struct TileWork;  // the rasterizer's view of one tile (bins), opaque to passes
 
-struct TileContext {
-    TileRect rect;                 // frame pixels [x0, x1) x [y0, y1) of this tile
+// What a pass gets: the tile (core/tile.h) and what the frame's triangles are. The tile's
+// visibility points into the frame's VisibilityBuffer (passes that add opaque surfaces, such
+// as ray marching, may write it); its colour is a tile buffer cleared to
+// RasterOptions::clear_color and copied to the frame's colour after the last pass (null when
+// RasterOptions::tile_color is false).
+struct TileContext : Tile {
     const Viewport* viewport = nullptr;
-    const Mesh* mesh = nullptr;             // the frame's world-space mesh
-    const ClipVertices* clip = nullptr;     // its clip-space vertices (barycentrics.h)
-
-    // Visibility, row-major with `stride` elements per row, pointing at pixel (x0, y0) of the
-    // frame's VisibilityBuffer: triangle id (kNoTriangle where empty) and window depth. Passes
-    // that add opaque surfaces (ray marching) may write both.
-    uint32_t* triangle = nullptr;
-    float* depth = nullptr;
-    size_t stride = 0;
-
-    // Linear RGBA colour of the tile, row-major with `color_stride` elements per row, cleared
-    // to RasterOptions::clear_color; copied to the frame's colour buffer after the last pass.
-    // Null when RasterOptions::tile_color is false.
-    glm::vec4* color = nullptr;
-    size_t color_stride = 0;
-
-    int width() const { return rect.x1 - rect.x0; }
-    int height() const { return rect.y1 - rect.y0; }
+    const Mesh* mesh = nullptr;          // the frame's world-space mesh
+    const ClipVertices* clip = nullptr;  // its clip-space vertices (barycentrics.h)
 
     // Rasterizes this tile's transparent triangles (RasterOptions::transparent) in submission
     // order, each depth-tested (LESS) against `depth` as it is now, without writing it, and

@@ -7,15 +7,11 @@
 #include <cstdint>
 
 #include "raster/core/aligned_vector.h"
+#include "raster/core/tile.h"
 #include "raster/simd/simd.h"
 #include "raster/pipeline/triangle_setup.h"
 
 namespace tessera::pipeline {
-
-// Pixels [x0, x1) x [y0, y1) of the frame.
-struct TileRect {
-    int x0 = 0, y0 = 0, x1 = 0, y1 = 0;
-};
 
 // A tile's depth and triangle ids, small enough to stay in L1/L2 while every triangle of the
 // tile is drawn. Stamp-swizzled: the kLanes pixels of one stamp are contiguous (one aligned

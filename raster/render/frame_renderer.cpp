@@ -1,10 +1,13 @@
 #include "raster/render/frame_renderer.h"
 
-#include <tbb/blocked_range2d.h>
 #include <tbb/parallel_for.h>
 
 #include <algorithm>
+#include <atomic>
 #include <chrono>
+#include <functional>
+#include <memory>
+#include <span>
 #include <optional>
 #include <stdexcept>
 #include <string>
@@ -12,6 +15,7 @@
 
 #include "raster/embree/device.h"
 #include "raster/core/pixel_rays.h"
+#include "raster/core/tile.h"
 #include "raster/embree/ray_cast.h"
 #include "raster/embree/scene.h"
 #include "raster/embree/shadow_rays.h"
@@ -44,10 +48,6 @@ ShadowMode parse_shadow_mode(std::string_view name) {
 
 namespace {
 
-using Clock = std::chrono::steady_clock;
-double ms_since(Clock::time_point t0) {
-    return std::chrono::duration<double, std::milli>(Clock::now() - t0).count();
-}
 
 // Shadow rays need a point to aim at: a directional light (w = 0) becomes a point far along
 // its direction, far beyond any scene here, so the rays are parallel to within 1e-4 rad.
@@ -57,17 +57,6 @@ glm::vec3 shadow_target(const scene::Light& light) {
     const glm::vec3 p(light.position);
     return light.position.w == 0.0f ? glm::normalize(p) * kDistantLight : p;
 }
-
-// The pixels of one tile, wherever they live (the rasterizer's tile view or a full frame).
-struct TileView {
-    int x0, y0, x1, y1;
-    uint32_t* triangle;
-    float* depth;
-    size_t stride;
-    glm::vec4* colour;
-    size_t colour_stride;
-    const pipeline::TileContext* context;  // raster renderer only (transparent triangles)
-};
 
 }  // namespace
 
@@ -87,6 +76,21 @@ struct FrameState {
 struct Region {
     Camera camera;  // narrowed to the region (camera.h region())
     int width, height;
+};
+
+// What the tile passes of one region read, built once per region: the shading (and one per
+// subset of lit lights, bit l set: light l reaches the point), the rays through its pixels,
+// and the scene's compute passes seen through its camera.
+struct RegionPasses {
+    shade::FrameShading shading;
+    std::vector<std::unique_ptr<shade::FrameShading>> subset_shading;  // empty: no shadows
+    uint32_t all_lit = 0;
+    PixelRays pixel_rays;
+    march::RayGenerator march_rays;
+    std::vector<std::function<void(const Tile&)>> compute;
+
+    RegionPasses(const AnimatedScene& scene, const FrameState& frame, const Region& region,
+                 std::span<const procedural::TerrainField> terrains);
 };
 
 struct FrameRenderer::Impl {
@@ -114,6 +118,13 @@ struct FrameRenderer::Impl {
     // the tiles that meet rows [rows_from, rows_to) of the region.
     void render_region(const FrameState& frame, const Region& region, std::vector<glm::vec4>& colour,
                        int rows_from, int rows_to, FrameStats& stats);
+    // The tile passes of one tile: shading, shadows, transparency, compute passes. `context`:
+    // the rasterizer's, whose bins hold the transparent triangles (null under ray casting).
+    void run_tile_passes(const FrameState& frame, const RegionPasses& passes, const VisibilityBuffer& visibility,
+                         const Tile& tile, const pipeline::TileContext* context, std::atomic<uint64_t>& shadowed) const;
+    // The pixels of `tile` that some light does not reach, shaded again without those lights.
+    void shade_shadows(const FrameState& frame, const RegionPasses& passes, const VisibilityBuffer& visibility,
+                       const Tile& tile, std::atomic<uint64_t>& shadowed) const;
 };
 
 FrameRenderer::FrameRenderer(AnimatedScene& scene, int width, int height, RendererKind renderer,
@@ -237,120 +248,116 @@ void FrameRenderer::Impl::prepare(float time, FrameState& frame, FrameStats& sta
     }
 }
 
-void FrameRenderer::Impl::render_region(const FrameState& frame, const Region& region,
-                                        std::vector<glm::vec4>& colour, int rows_from, int rows_to,
-                                        FrameStats& stats) {
+RegionPasses::RegionPasses(const AnimatedScene& scene, const FrameState& frame, const Region& region,
+                           std::span<const procedural::TerrainField> terrains)
+    : shading(frame.baked, scene.scene, shade::RenderState{region.camera, region.width, region.height, scene.scene.lights}),
+      pixel_rays(region.camera.view_projection(), region.width, region.height),
+      march_rays(region.camera, region.width, region.height) {
     const scene::Scene& s = scene.scene;
-    const scene::BakedScene& baked = frame.baked;
-    const int w = region.width, h = region.height;
-    const glm::mat4 view_projection = region.camera.view_projection();
-    const shade::RenderState state{region.camera, w, h, s.lights};
-    const shade::FrameShading shading(baked, s, state);
-
-    // Shadows: one shading per subset of lit lights (bit l set: light l reaches the point).
     const size_t light_count = frame.light_targets.size();
-    const uint32_t all_lit = (1u << light_count) - 1u;
-    std::vector<std::unique_ptr<shade::FrameShading>> subset_shading;
+    all_lit = (1u << light_count) - 1u;
     if (light_count > 0) {
         TraceScope trace("shadow setup");
         subset_shading.resize(all_lit);
         tbb::parallel_for(uint32_t(0), all_lit, [&](uint32_t mask) {
-            shade::RenderState dimmed = state;
+            shade::RenderState dimmed = shading.state();
             for (size_t l = 0; l < light_count; ++l)
                 if (!(mask & (1u << l))) dimmed.lights[l].Le = glm::vec3(0.0f);
-            subset_shading[mask] = std::make_unique<shade::FrameShading>(baked, s, std::move(dimmed));
+            subset_shading[mask] = std::make_unique<shade::FrameShading>(frame.baked, s, std::move(dimmed));
         });
     }
-    const PixelRays pixel_rays(view_projection, w, h);
-    std::atomic<uint64_t> shadowed{0};
-
-    // The scene's compute passes, seen through this region's camera.
-    const march::RayGenerator march_rays(region.camera, w, h);
-    std::vector<std::function<void(const march::PassTarget&)>> compute_passes;
-    {
-        size_t terrain_i = 0, metaball_i = 0;
-        for (const PassSpec& p : scene.passes) {
-            const march::SurfaceLook look{p.material, s.lights, {}};
-            switch (p.kind) {
-                case PassSpec::Kind::terrain: {
-                    auto pass = std::make_shared<march::SurfacePass<march::SlabSurface<procedural::TerrainField>>>(
-                        march::terrain_surface(terrains[terrain_i++]), march_rays, p.settings, look, s.background);
-                    compute_passes.push_back([pass](const march::PassTarget& t) { pass->run(t); });
-                    break;
-                }
-                case PassSpec::Kind::metaballs: {
-                    auto pass = std::make_shared<march::SurfacePass<march::MetaballSurface>>(
-                        march::MetaballSurface{frame.metaballs[metaball_i++]}, march_rays, p.settings, look,
-                        s.background);
-                    compute_passes.push_back([pass](const march::PassTarget& t) { pass->run(t); });
-                    break;
-                }
-                case PassSpec::Kind::fog: {
-                    auto pass = std::make_shared<march::FogPass>(march_rays, p.fog);
-                    compute_passes.push_back([pass](const march::PassTarget& t) { pass->run(t); });
-                    break;
-                }
+    size_t terrain_i = 0, metaball_i = 0;
+    for (const PassSpec& p : scene.passes) {
+        const march::SurfaceLook look{p.material, s.lights, {}};
+        switch (p.kind) {
+            case PassSpec::Kind::terrain: {
+                auto pass = std::make_shared<march::SurfacePass<march::SlabSurface<procedural::TerrainField>>>(
+                    march::terrain_surface(terrains[terrain_i++]), march_rays, p.settings, look, s.background);
+                compute.push_back([pass](const Tile& t) { pass->run(t); });
+                break;
+            }
+            case PassSpec::Kind::metaballs: {
+                auto pass = std::make_shared<march::SurfacePass<march::MetaballSurface>>(
+                    march::MetaballSurface{frame.metaballs[metaball_i++]}, march_rays, p.settings, look, s.background);
+                compute.push_back([pass](const Tile& t) { pass->run(t); });
+                break;
+            }
+            case PassSpec::Kind::fog: {
+                auto pass = std::make_shared<march::FogPass>(march_rays, p.fog);
+                compute.push_back([pass](const Tile& t) { pass->run(t); });
+                break;
             }
         }
     }
+}
 
+void FrameRenderer::Impl::shade_shadows(const FrameState& frame, const RegionPasses& passes,
+                                        const VisibilityBuffer& visibility, const Tile& tile,
+                                        std::atomic<uint64_t>& shadowed) const {
+    TraceScope t("shadow test", "tile");
+    shadow::SurfacePoints points;
+    shadow::gather_surface_points(visibility, frame.baked.mesh, passes.pixel_rays, tile.rect, points);
+    std::vector<uint8_t> lit(points.size(), 0), facing(points.size(), 0);
+    shadow::facing_lights(points, frame.light_targets, facing);
+    frame.light_test(points, frame.light_targets, lit);
+    const uint32_t all_lit = passes.all_lit;
+    std::vector<std::vector<shade::CoveredPixel>> groups(all_lit);
+    const uint32_t w = uint32_t(visibility.width);
+    for (size_t i = 0; i < points.size(); ++i) {
+        const uint32_t mask = (lit[i] | ~facing[i]) & all_lit;
+        if (mask == all_lit) continue;
+        const uint32_t p = points.pixel[i];
+        groups[mask].push_back({int(p % w), int(p / w), visibility.triangle[p]});
+    }
+    std::vector<glm::vec4> colours;
+    for (uint32_t mask = 0; mask < all_lit; ++mask) {
+        if (groups[mask].empty()) continue;
+        colours.resize(groups[mask].size());
+        passes.subset_shading[mask]->shade(groups[mask], colours);
+        for (size_t i = 0; i < colours.size(); ++i) tile.colour_at(groups[mask][i].x, groups[mask][i].y) = colours[i];
+        shadowed += groups[mask].size();
+    }
+}
+
+void FrameRenderer::Impl::run_tile_passes(const FrameState& frame, const RegionPasses& passes,
+                                          const VisibilityBuffer& visibility, const Tile& tile,
+                                          const pipeline::TileContext* context,
+                                          std::atomic<uint64_t>& shadowed) const {
+    TraceScope trace("tile", "tile", tile.rect.x0, tile.rect.y0);
+    {
+        TraceScope t("shade", "tile");
+        shade::shade_tile(passes.shading, tile);
+    }
+    if (!passes.subset_shading.empty()) shade_shadows(frame, passes, visibility, tile, shadowed);
+    if (!frame.transparent.empty()) {
+        // Transparent triangles in front of the opaque surface, blended in submission order
+        // over what is drawn so far: the rasterizer replays its bins, rays collect them.
+        TraceScope t("transparent", "tile");
+        std::vector<shade::CoveredPixel> fragments;
+        const auto add = [&](uint32_t triangle, std::span<const pipeline::Fragment> f) {
+            for (const pipeline::Fragment& frag : f) fragments.push_back({frag.x, frag.y, triangle});
+        };
+        if (context)
+            context->for_each_transparent(add);
+        else
+            embree::for_each_transparent_hit(*frame.rays, passes.pixel_rays, frame.transparent, visibility, tile.rect,
+                                             add);
+        if (!fragments.empty()) shade::blend_fragments(passes.shading, fragments, tile);
+    }
+    for (const auto& pass : passes.compute) {
+        TraceScope t("compute pass", "tile");
+        pass(tile);
+    }
+}
+
+void FrameRenderer::Impl::render_region(const FrameState& frame, const Region& region,
+                                        std::vector<glm::vec4>& colour, int rows_from, int rows_to,
+                                        FrameStats& stats) {
+    const int w = region.width, h = region.height;
+    const RegionPasses passes(scene, frame, region, terrains);
+    std::atomic<uint64_t> shadowed{0};
     VisibilityBuffer visibility;
-    const auto tile_work = [&](const TileView& v) {
-        if (v.y1 <= rows_from || v.y0 >= rows_to) return;
-        TraceScope trace("tile", "tile", v.x0, v.y0);
-        const shade::TileTarget target{v.x0, v.y0, v.x1 - v.x0, v.y1 - v.y0, v.triangle, v.stride, v.colour, v.colour_stride};
-        {
-            TraceScope t("shade", "tile");
-            shade::shade_tile(shading, target);
-        }
-        if (!subset_shading.empty()) {
-            TraceScope t("shadow test", "tile");
-            shadow::SurfacePoints points;
-            shadow::gather_surface_points(visibility, baked.mesh, pixel_rays, ImageTile{v.x0, v.y0, v.x1, v.y1},
-                                          points);
-            std::vector<uint8_t> lit(points.size(), 0), facing(points.size(), 0);
-            shadow::facing_lights(points, frame.light_targets, facing);
-            frame.light_test(points, frame.light_targets, lit);
-            std::vector<std::vector<shade::CoveredPixel>> groups(all_lit);
-            for (size_t i = 0; i < points.size(); ++i) {
-                const uint32_t mask = (lit[i] | ~facing[i]) & all_lit;
-                if (mask == all_lit) continue;
-                const uint32_t p = points.pixel[i];
-                const int x = int(p % uint32_t(w)), y = int(p / uint32_t(w));
-                groups[mask].push_back({x, y, visibility.triangle[p]});
-            }
-            std::vector<glm::vec4> colours;
-            for (uint32_t mask = 0; mask < all_lit; ++mask) {
-                if (groups[mask].empty()) continue;
-                colours.resize(groups[mask].size());
-                subset_shading[mask]->shade(groups[mask], colours);
-                for (size_t i = 0; i < colours.size(); ++i) {
-                    const shade::CoveredPixel& c = groups[mask][i];
-                    v.colour[size_t(c.y - v.y0) * v.colour_stride + size_t(c.x - v.x0)] = colours[i];
-                }
-                shadowed += groups[mask].size();
-            }
-        }
-        if (!frame.transparent.empty()) {
-            // Transparent triangles in front of the opaque surface, blended in submission order
-            // over what is drawn so far: the rasterizer replays its bins, rays collect them.
-            TraceScope t("transparent", "tile");
-            std::vector<shade::CoveredPixel> fragments;
-            const auto add = [&](uint32_t triangle, std::span<const pipeline::Fragment> f) {
-                for (const pipeline::Fragment& frag : f) fragments.push_back({frag.x, frag.y, triangle});
-            };
-            if (v.context)
-                v.context->for_each_transparent(add);
-            else
-                embree::for_each_transparent_hit(*frame.rays, pixel_rays, frame.transparent, visibility,
-                                             ImageTile{v.x0, v.y0, v.x1, v.y1}, add);
-            if (!fragments.empty()) shade::blend_fragments(shading, fragments, target);
-        }
-        for (const auto& pass : compute_passes) {
-            TraceScope t("compute pass", "tile");
-            pass(march::PassTarget{v.x0, v.y0, v.x1, v.y1, v.depth, v.stride, v.colour, v.colour_stride, v.triangle});
-        }
-    };
+    const auto in_rows = [&](const TileRect& r) { return r.y1 > rows_from && r.y0 < rows_to; };
 
     if (renderer == RendererKind::raster) {
         TraceScope trace("raster");
@@ -358,12 +365,11 @@ void FrameRenderer::Impl::render_region(const FrameState& frame, const Region& r
         pipeline::RasterOptions options;
         options.transparent = frame.transparent;
         const pipeline::TilePass pass = [&](const pipeline::TileContext& c) {
-            tile_work(TileView{c.rect.x0, c.rect.y0, c.rect.x1, c.rect.y1, c.triangle, c.depth, c.stride, c.color,
-                               c.color_stride, &c});
+            if (in_rows(c.rect)) run_tile_passes(frame, passes, visibility, c, &c, shadowed);
         };
         pipeline::RasterStats raster;
-        rasterizer.render(baked.mesh, view_projection, pipeline::Viewport(w, h), options, visibility, {&pass, 1}, &colour,
-                          &raster);
+        rasterizer.render(frame.baked.mesh, region.camera.view_projection(), pipeline::Viewport(w, h), options,
+                          visibility, {&pass, 1}, &colour, &raster);
         stats.raster += raster;
         stats.tiles_ms += raster.passes_ms;
         stats.visibility_ms += ms_since(t0) - raster.passes_ms;
@@ -371,26 +377,17 @@ void FrameRenderer::Impl::render_region(const FrameState& frame, const Region& r
         {
             TraceScope trace("primary rays");
             const auto t0 = Clock::now();
-            embree::cast_primary_rays(*frame.rays, view_projection, w, h, visibility, embree::RayPacket::x16,
-                                  frame.transparent);
+            embree::cast_primary_rays(*frame.rays, region.camera.view_projection(), w, h, visibility,
+                                      embree::RayPacket::x16, frame.transparent);
             stats.visibility_ms += ms_since(t0);
         }
         TraceScope trace("tiles");
         const auto t0 = Clock::now();
         colour.resize(size_t(w) * size_t(h));
-        constexpr int kTile = 64;
-        const int tiles_x = (w + kTile - 1) / kTile, tiles_y = (h + kTile - 1) / kTile;
-        tbb::parallel_for(tbb::blocked_range2d<int>(0, tiles_y, 1, 0, tiles_x, 1),
-                          [&](const tbb::blocked_range2d<int>& r) {
-            for (int ty = r.rows().begin(); ty != r.rows().end(); ++ty)
-                for (int tx = r.cols().begin(); tx != r.cols().end(); ++tx) {
-                    const int x0 = tx * kTile, y0 = ty * kTile;
-                    const size_t at = size_t(y0) * size_t(w) + size_t(x0);
-                    tile_work(TileView{x0, y0, std::min(w, x0 + kTile), std::min(h, y0 + kTile),
-                                       visibility.triangle.data() + at, visibility.depth.data() + at, size_t(w),
-                                       colour.data() + at, size_t(w), nullptr});
-                }
-        }, tbb::simple_partitioner());
+        parallel_for_tiles(TileGrid(w, h, 64), [&](int, const TileRect& rect) {
+            if (in_rows(rect)) run_tile_passes(frame, passes, visibility, frame_tile(visibility, colour.data(), rect),
+                                               nullptr, shadowed);
+        });
         stats.tiles_ms += ms_since(t0);
     }
     stats.shadowed_pixels += shadowed.load();

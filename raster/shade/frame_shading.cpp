@@ -185,61 +185,43 @@ void FrameShading::shade_reference(std::span<const CoveredPixel> pixels, std::sp
     shade_with<float>(pixels, out);
 }
 
-void shade_tile(const FrameShading& shading, const TileTarget& tile) {
+void shade_tile(const FrameShading& shading, const Tile& tile) {
     std::vector<CoveredPixel> pixels;
-    pixels.reserve(size_t(tile.width) * size_t(tile.height));
-    for (int y = 0; y < tile.height; ++y) {
-        const uint32_t* ids = tile.triangle + size_t(y) * tile.triangle_stride;
-        glm::vec4* colour = tile.colour + size_t(y) * tile.colour_stride;
-        for (int x = 0; x < tile.width; ++x) {
-            if (ids[x] != kNoTriangle) {
-                pixels.push_back({tile.x0 + x, tile.y0 + y, ids[x]});
-            } else {
-                colour[x] = shading.background(tile.x0 + x, tile.y0 + y);
-            }
+    pixels.reserve(size_t(tile.width()) * size_t(tile.height()));
+    for (int y = tile.rect.y0; y < tile.rect.y1; ++y)
+        for (int x = tile.rect.x0; x < tile.rect.x1; ++x) {
+            const uint32_t id = tile.triangle_at(x, y);
+            if (id != kNoTriangle) pixels.push_back({x, y, id});
+            else tile.colour_at(x, y) = shading.background(x, y);
         }
-    }
     std::vector<glm::vec4> colours(pixels.size());
     shading.shade(pixels, colours);
     for (size_t i = 0; i < pixels.size(); ++i) {
         const CoveredPixel& f = pixels[i];
         // Opaque surfaces cover the pixel whatever their material's opacity (transparent
         // triangles never reach the visibility buffer; a ray caster's might).
-        tile.colour[size_t(f.y - tile.y0) * tile.colour_stride + size_t(f.x - tile.x0)] =
-            glm::vec4(glm::vec3(colours[i]), 1.0f);
+        tile.colour_at(f.x, f.y) = glm::vec4(glm::vec3(colours[i]), 1.0f);
     }
 }
 
-void blend_fragments(const FrameShading& shading, std::span<const CoveredPixel> pixels, const TileTarget& tile) {
+void blend_fragments(const FrameShading& shading, std::span<const CoveredPixel> pixels, const Tile& tile) {
     std::vector<glm::vec4> colours(pixels.size());
     shading.shade(pixels, colours);
     for (size_t i = 0; i < pixels.size(); ++i) {
-        const CoveredPixel& f = pixels[i];
-        glm::vec4& dst = tile.colour[size_t(f.y - tile.y0) * tile.colour_stride + size_t(f.x - tile.x0)];
+        glm::vec4& dst = tile.colour_at(pixels[i].x, pixels[i].y);
         dst = blend_over(dst, colours[i]);
     }
 }
 
-Frame shade_visibility(const FrameShading& shading, const VisibilityBuffer& visibility) {
+Frame shade_visibility(const FrameShading& shading, VisibilityBuffer& visibility) {
     const RenderState& s = shading.state();
     if (visibility.width != s.width || visibility.height != s.height)
         throw std::invalid_argument("shade_visibility: the visibility buffer is " +
                                     std::to_string(visibility.width) + "x" + std::to_string(visibility.height) +
                                     ", the frame " + std::to_string(s.width) + "x" + std::to_string(s.height));
     Frame frame(s.width, s.height);
-    constexpr int kTile = 64;
-    const int tiles_x = (s.width + kTile - 1) / kTile, tiles_y = (s.height + kTile - 1) / kTile;
-    tbb::parallel_for(0, tiles_x * tiles_y, [&](int t) {
-        TileTarget tile;
-        tile.x0 = (t % tiles_x) * kTile;
-        tile.y0 = (t / tiles_x) * kTile;
-        tile.width = std::min(kTile, s.width - tile.x0);
-        tile.height = std::min(kTile, s.height - tile.y0);
-        tile.triangle = visibility.triangle.data() + size_t(tile.y0) * size_t(s.width) + size_t(tile.x0);
-        tile.triangle_stride = size_t(s.width);
-        tile.colour = &frame.at(tile.x0, tile.y0);
-        tile.colour_stride = size_t(s.width);
-        shade_tile(shading, tile);
+    parallel_for_tiles(TileGrid(s.width, s.height, 64), [&](int, const TileRect& rect) {
+        shade_tile(shading, frame_tile(visibility, frame.pixels.data(), rect));
     });
     return frame;
 }

@@ -21,6 +21,7 @@
 
 #include "raster/core/camera.h"
 #include "raster/core/frame.h"
+#include "raster/core/tile.h"
 #include "raster/scene/scene.h"
 #include "raster/core/visibility.h"
 
@@ -76,18 +77,8 @@ private:
     std::vector<glm::vec3> gouraud_;    // per vertex; empty when no material is Gouraud
 };
 
-// A tile of the frame: the visible triangle per pixel and the linear RGBA colour to write,
-// each addressed with its own row stride (in pixels).
-struct TileTarget {
-    int x0 = 0, y0 = 0, width = 0, height = 0;
-    const uint32_t* triangle = nullptr;  // kNoTriangle where nothing is visible
-    size_t triangle_stride = 0;
-    glm::vec4* colour = nullptr;  // linear RGBA
-    size_t colour_stride = 0;
-};
-
 // The opaque pass of a tile: visible pixels shaded, the others given the background.
-void shade_tile(const FrameShading& shading, const TileTarget& tile);
+void shade_tile(const FrameShading& shading, const Tile& tile);
 
 // Alpha blending as in the seed (glBlendFunc(GL_SRC_ALPHA, GL_ONE_MINUS_SRC_ALPHA)) for the
 // colour, c = c_src * a_src + c_dst * (1 - a_src). Coverage composes as "over",
@@ -102,10 +93,10 @@ inline glm::vec4 blend_over(glm::vec4 dst, glm::vec4 src) {
 // against the opaque pass) are shaded together, then blended one after another in the given
 // order — submission order — so the result is the same whatever the tiling and threads.
 void blend_fragments(const FrameShading& shading, std::span<const CoveredPixel> pixels,
-                     const TileTarget& tile);
+                     const Tile& tile);
 
 // The opaque pass over a whole visibility buffer, tiles in parallel: how a renderer that
 // produces a VisibilityBuffer (the Embree ray caster, the tests) gets its picture.
-Frame shade_visibility(const FrameShading& shading, const VisibilityBuffer& visibility);
+Frame shade_visibility(const FrameShading& shading, VisibilityBuffer& visibility);
 
 }  // namespace tessera::shade

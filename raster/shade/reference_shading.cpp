@@ -94,8 +94,8 @@ pipeline::TilePass make_reference_shading_pass(ShadeMode mode, const Camera& cam
                         }
                     }
                 }
-                if (ctx.color)
-                    ctx.color[size_t(y - ctx.rect.y0) * ctx.color_stride + size_t(x - ctx.rect.x0)] = glm::vec4(c, 1.0f);
+                if (ctx.colour)
+                    ctx.colour[size_t(y - ctx.rect.y0) * ctx.colour_stride + size_t(x - ctx.rect.x0)] = glm::vec4(c, 1.0f);
                 uint8_t* out = &rgb8[(size_t(y) * width + x) * 3];
                 out[0] = quantise(c.r);
                 out[1] = quantise(c.g);

@@ -33,7 +33,7 @@ enum class ShadeMode { id, depth, normal, phong };
 // Parses "id" | "depth" | "normal" | "phong"; throws std::invalid_argument otherwise.
 ShadeMode parse_shade_mode(const std::string& text);
 
-// A tile pass that shades every pixel of the tile into ctx.color (linear RGBA, alpha 1; skipped
+// A tile pass that shades every pixel of the tile into ctx.colour (linear RGBA, alpha 1; skipped
 // when the rasterizer gives no colour tile) and into `rgb8` (width*height*3 bytes, rows top to
 // bottom, resized by the caller). The scalar definition that the SIMD pass (stamp_shading.h)
 // is tested against.

@@ -145,7 +145,7 @@ pipeline::TilePass make_stamp_shading_pass(ShadeMode mode, const Camera& camera,
             const uint32_t* ids = ctx.triangle + size_t(y - ctx.rect.y0) * ctx.stride;
             const float* depth = ctx.depth + size_t(y - ctx.rect.y0) * ctx.stride;
             uint8_t* out = &rgb8[(size_t(y) * width + ctx.rect.x0) * 3];
-            glm::vec4* color = ctx.color ? ctx.color + size_t(y - ctx.rect.y0) * ctx.color_stride : nullptr;
+            glm::vec4* color = ctx.colour ? ctx.colour + size_t(y - ctx.rect.y0) * ctx.colour_stride : nullptr;
             for (int x = ctx.rect.x0; x < ctx.rect.x1; x += kLanes) {
                 const int n = std::min(kLanes, ctx.rect.x1 - x);
                 const int i0 = x - ctx.rect.x0;

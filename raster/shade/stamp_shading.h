@@ -20,7 +20,7 @@
 
 namespace tessera::shade {
 
-// Same contract as make_reference_shading_pass, except that ctx.color (when the rasterizer
+// Same contract as make_reference_shading_pass, except that ctx.colour (when the rasterizer
 // gives a colour tile) receives the quantised colour, channel / 255.
 pipeline::TilePass make_stamp_shading_pass(ShadeMode mode, const Camera& camera, std::vector<uint8_t>& rgb8);
 

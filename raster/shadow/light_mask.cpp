@@ -26,7 +26,7 @@ LightMask compute_light_mask(const VisibilityBuffer& visibility, const Mesh& mes
         std::vector<uint8_t> visible;
     };
     tbb::enumerable_thread_specific<Scratch> scratch;
-    parallel_for_tiles(visibility.width, visibility.height, [&](const ImageTile& tile) {
+    parallel_for_tiles(TileGrid(visibility.width, visibility.height, kRayTileSize), [&](int, const TileRect& tile) {
         Scratch& local = scratch.local();
         SurfacePoints& points = local.points;
         std::vector<uint8_t>& visible = local.visible;

@@ -34,7 +34,7 @@ Plane plane_of(const Mesh& mesh, uint32_t triangle) {
 }  // namespace
 
 void gather_surface_points(const VisibilityBuffer& visibility, const Mesh& mesh,
-                           const PixelRays& rays, const ImageTile& tile,
+                           const PixelRays& rays, const TileRect& tile,
                            SurfacePoints& out) {
     out.clear();
     const size_t area = size_t(tile.x1 - tile.x0) * size_t(tile.y1 - tile.y0);

@@ -35,7 +35,7 @@ struct SurfacePoints {
 // Replaces `out` with the covered pixels of `tile`. Pixels whose triangle is degenerate or
 // has non-finite vertices (never produced by either renderer, but guarded) are left out.
 void gather_surface_points(const VisibilityBuffer& visibility, const Mesh& mesh,
-                           const PixelRays& rays, const ImageTile& tile,
+                           const PixelRays& rays, const TileRect& tile,
                            SurfacePoints& out);
 
 // True when a light at `light` is on the camera's side of the surface at `position` (the

@@ -1,4 +1,5 @@
-// What the marcher needs from a surface: an implicit function with a value and a gradient.
+// What the marcher needs from a surface (MarchField): an implicit function with a value and a
+// gradient. (procedural::ImplicitField is one family of such fields, with a virtual interface.)
 //
 // Sign convention (seeds/003): f > 0 inside the solid, f < 0 outside, the surface is f = 0.
 // The terrain f(p) = h(p.xz) - p.y, the 3-D noise w/32 + 0.5 - p.y and the metaball sum
@@ -15,7 +16,7 @@
 namespace tessera::march {
 
 template <class F>
-concept ImplicitField = requires(const F& field, glm::vec3 p) {
+concept MarchField = requires(const F& field, glm::vec3 p) {
     { field.value(p) } -> std::convertible_to<float>;
     { field.gradient(p) } -> std::convertible_to<glm::vec3>;
 };
@@ -23,19 +24,19 @@ concept ImplicitField = requires(const F& field, glm::vec3 p) {
 // A field that can also evaluate kMarchLanes points at once (structure of arrays), written so
 // the lane loop is innermost and vectorises. It must return what value() returns per point.
 template <class F>
-concept PacketField = ImplicitField<F> && requires(const F& field, const float* c, float* out) {
+concept PacketField = MarchField<F> && requires(const F& field, const float* c, float* out) {
     field.values(c, c, c, out);
 };
 
 // A field with a batch form over any count of points (the procedural/ fields' interface).
 template <class F>
-concept BatchField = ImplicitField<F> && requires(const F& field, const float* c, float* out) {
+concept BatchField = MarchField<F> && requires(const F& field, const float* c, float* out) {
     field.value_batch(size_t{1}, c, c, c, out);
 };
 
 // Field values at kMarchLanes points: the field's own packet or batch loop where it has one,
 // otherwise one value() per lane.
-template <ImplicitField F>
+template <MarchField F>
 inline void evaluate_lanes(const F& field, const float* x, const float* y, const float* z,
                            float* out) {
     if constexpr (PacketField<F>) {
