@@ -25,6 +25,7 @@
 #include "raster/march/metaball_orbits.h"
 #include "raster/march/procedural_surfaces.h"
 #include "raster/march/surface_pass.h"
+#include "raster/shade/alpha_test.h"
 #include "raster/shade/frame_shading.h"
 #include "raster/shadow/light_mask.h"
 #include "raster/shadow/shadow_map.h"
@@ -53,6 +54,9 @@ namespace {
 // its direction, far beyond any scene here, so the rays are parallel to within 1e-4 rad.
 constexpr float kDistantLight = 1.0e4f;
 
+// Triangles by how visibility treats them (FrameState::transparent).
+constexpr uint8_t kOpaque = 0, kBlended = 1, kAlphaTested = 2;
+
 glm::vec3 shadow_target(const scene::Light& light) {
     const glm::vec3 p(light.position);
     return light.position.w == 0.0f ? glm::normalize(p) * kDistantLight : p;
@@ -69,7 +73,9 @@ struct FrameState {
     std::vector<shadow::ShadowMap> maps;
     shadow::LightTest light_test;
     std::vector<march::MetaballField> metaballs;
-    std::vector<uint8_t> transparent;  // per triangle; empty when no material is transparent
+    // Per triangle, kOpaque, kBlended or kAlphaTested (both left out of the opaque pass);
+    // empty when every material is opaque.
+    std::vector<uint8_t> transparent;
 };
 
 // A part of the frame rendered in one pass: the whole frame, or a region of a band.
@@ -239,12 +245,15 @@ void FrameRenderer::Impl::prepare(float time, FrameState& frame, FrameStats& sta
             for (march::Metaball& b : balls) b.centre = b.centre * p.orbit_scale + p.offset;
             frame.metaballs.emplace_back(balls, p.style);
         }
-    bool any_transparent = false;
-    for (const scene::Material& m : s.materials) any_transparent |= m.transparent();
-    if (any_transparent) {
+    bool any = false;
+    for (const scene::Material& m : s.materials) any |= m.transparent() || m.masked();
+    if (any) {
         const std::vector<uint32_t>& material = frame.baked.triangle_material;
         frame.transparent.resize(material.size());
-        for (size_t t = 0; t < material.size(); ++t) frame.transparent[t] = s.materials[material[t]].transparent();
+        for (size_t t = 0; t < material.size(); ++t) {
+            const scene::Material& m = s.materials[material[t]];
+            frame.transparent[t] = m.masked() ? kAlphaTested : m.transparent() ? kBlended : kOpaque;
+        }
     }
 }
 
@@ -314,7 +323,9 @@ void FrameRenderer::Impl::shade_shadows(const FrameState& frame, const RegionPas
         if (groups[mask].empty()) continue;
         colours.resize(groups[mask].size());
         passes.subset_shading[mask]->shade(groups[mask], colours);
-        for (size_t i = 0; i < colours.size(); ++i) tile.colour_at(groups[mask][i].x, groups[mask][i].y) = colours[i];
+        // An opaque surface covers its pixel, whatever alpha its material has.
+        for (size_t i = 0; i < colours.size(); ++i)
+            tile.colour_at(groups[mask][i].x, groups[mask][i].y) = glm::vec4(glm::vec3(colours[i]), 1.0f);
         shadowed += groups[mask].size();
     }
 }
@@ -328,20 +339,33 @@ void FrameRenderer::Impl::run_tile_passes(const FrameState& frame, const RegionP
         TraceScope t("shade", "tile");
         shade::shade_tile(passes.shading, tile);
     }
-    if (!passes.subset_shading.empty()) shade_shadows(frame, passes, visibility, tile, shadowed);
+    // Triangles outside the opaque pass, in front of its surface, in submission order: the
+    // rasterizer replays its bins, rays collect them. Alpha-tested ones are decided first
+    // (they are opaque where they survive: shadows and blending must see them).
+    std::vector<shade::DepthFragment> blended;
     if (!frame.transparent.empty()) {
-        // Transparent triangles in front of the opaque surface, blended in submission order
-        // over what is drawn so far: the rasterizer replays its bins, rays collect them.
         TraceScope t("transparent", "tile");
-        std::vector<shade::CoveredPixel> fragments;
+        std::vector<shade::DepthFragment> masked;
         const auto add = [&](uint32_t triangle, std::span<const pipeline::Fragment> f) {
-            for (const pipeline::Fragment& frag : f) fragments.push_back({frag.x, frag.y, triangle});
+            auto& to = frame.transparent[triangle] == kAlphaTested ? masked : blended;
+            for (const pipeline::Fragment& frag : f) to.push_back({frag.x, frag.y, triangle, frag.depth});
         };
         if (context)
             context->for_each_transparent(add);
         else
             embree::for_each_transparent_hit(*frame.rays, passes.pixel_rays, frame.transparent, visibility, tile.rect,
                                              add);
+        if (!masked.empty()) shade::resolve_alpha_tested(passes.shading, masked, tile);
+    }
+    if (!passes.subset_shading.empty()) shade_shadows(frame, passes, visibility, tile, shadowed);
+    if (!blended.empty()) {
+        // Blended over what is drawn so far, in submission order, where still in front (an
+        // alpha-tested surface may have come nearer).
+        TraceScope t("blend", "tile");
+        std::vector<shade::CoveredPixel> fragments;
+        fragments.reserve(blended.size());
+        for (const shade::DepthFragment& f : blended)
+            if (f.depth < tile.depth_at(f.x, f.y)) fragments.push_back({f.x, f.y, f.triangle});
         if (!fragments.empty()) shade::blend_fragments(passes.shading, fragments, tile);
     }
     for (const auto& pass : passes.compute) {

@@ -2,7 +2,7 @@
 // and the parameters of the seed's Blinn-Phong formula
 //     L = ka*La + (kd*cos(theta) + ks*cos(delta)^shine) * Le,
 // plus optional textures (a diffuse colour texture modulating kd, a tangent-space normal map
-// as in seeds/004) and an opacity for alpha blending.
+// sampled in the surface's tangent frame), an opacity for alpha blending and an alpha cutoff for alpha testing.
 #pragma once
 #include <glm/glm.hpp>
 
@@ -32,13 +32,21 @@ struct Material {
     glm::vec3 ks{0.3f};
     float shine = 32.0f;
     float opacity = 1.0f;  // < 1: drawn after the opaque pass, blended in submission order
+    // Blended even at opacity 1: the diffuse texture's alpha varies over the surface (glTF 2.0
+    // alphaMode BLEND).
+    bool blend = false;
+    // Alpha testing (glTF 2.0 alphaMode MASK) when > 0: where opacity x diffuse texture alpha is
+    // below the cutoff the surface is absent, elsewhere it is opaque (nearest one wins).
+    float alpha_cutoff = 0.0f;
     int32_t diffuse_texture = kNoTexture;  // index into the scene's textures; modulates kd
+    bool textured_ambient = false;         // the diffuse texture modulates ka too (an albedo map)
     int32_t normal_texture = kNoTexture;   // tangent-space normal map (per-pixel models only)
     texture::TextureFilter filter = texture::TextureFilter::trilinear;
     texture::TextureWrap wrap = texture::TextureWrap::repeat;
     glm::vec2 uv_scale{1.0f};  // texture coordinates are multiplied by this before sampling
 
-    bool transparent() const { return opacity < 1.0f; }
+    bool masked() const { return alpha_cutoff > 0.0f; }
+    bool transparent() const { return !masked() && (blend || opacity < 1.0f); }
 };
 
 const char* to_string(ShadingModel model);

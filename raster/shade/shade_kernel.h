@@ -111,6 +111,7 @@ void shade_lanes(const KernelContext& ctx, Lanes& d, int lane) {
     const V view = normalize_or(eye - position, face);
 
     V kd = broadcast<F>(m.kd);
+    V ka = broadcast<F>(m.ka);
     F alpha(m.opacity);
     if (ctx.diffuse || ctx.normal) {
         // uv and its derivatives per pixel step, analytic from the same plane equations:
@@ -131,6 +132,7 @@ void shade_lanes(const KernelContext& ctx, Lanes& d, int lane) {
         if (ctx.diffuse) {
             const Texel<F> t = sample_texture<F>(*ctx.diffuse, m, u, v, udx, vdx, udy, vdy);
             kd = kd * V{t.r, t.g, t.b};
+            if (m.textured_ambient) ka = ka * V{t.r, t.g, t.b};
             alpha = alpha * t.a;
         }
         if (ctx.normal) {
@@ -151,7 +153,7 @@ void shade_lanes(const KernelContext& ctx, Lanes& d, int lane) {
         case scene::ShadingModel::flat: {
             const V centroid = (p[0] + p[1] + p[2]) * F(1.0f / 3.0f);
             colour = blinn_phong<F>(ctx.lights, centroid, face, normalize_or(eye - centroid, face),
-                                    broadcast<F>(m.ka), kd, broadcast<F>(m.ks), F(m.shine));
+                                    ka, kd, broadcast<F>(m.ks), F(m.shine));
             break;
         }
         case scene::ShadingModel::gouraud: {
@@ -160,11 +162,14 @@ void shade_lanes(const KernelContext& ctx, Lanes& d, int lane) {
             break;
         }
         case scene::ShadingModel::phong:
-            colour = blinn_phong<F>(ctx.lights, position, normal, view, broadcast<F>(m.ka), kd,
+            colour = blinn_phong<F>(ctx.lights, position, normal, view, ka, kd,
                                     broadcast<F>(m.ks), F(m.shine));
             break;
         case scene::ShadingModel::toon: colour = toon<F>(ctx.lights, position, normal, view, kd); break;
     }
+    // Alpha testing: the surface is there (1) or not (0), the cutoff compared in the same
+    // lanes by both instantiations.
+    if (m.masked()) alpha = select(alpha < F(m.alpha_cutoff), zero, one);
     lane_store(d.out[0], lane, colour.x);
     lane_store(d.out[1], lane, colour.y);
     lane_store(d.out[2], lane, colour.z);
