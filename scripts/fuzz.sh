@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
 # Runs every libFuzzer target of build-fuzz/bin (make fuzz builds them) for SECONDS each
-# (default 15: about a minute for the four targets), starting from the committed seeds in
+# (default 15: about a minute and a quarter for the five targets), starting from the committed seeds in
 # tests/fuzz/corpus/<target>/. New interesting inputs go to a scratch corpus, never into the
 # repository; a crash or broken property stops with the input saved under
 # build-fuzz/findings/<target>/ — copy it into tests/fuzz/corpus/<target>/ once fixed, so

@@ -40,6 +40,7 @@ TEST(FuzzRegression, ObjCorpus) { EXPECT_GT(replay("obj", obj_input), 5u); }
 TEST(FuzzRegression, SceneCorpus) { EXPECT_GT(replay("scene", scene_input), 5u); }
 TEST(FuzzRegression, ImageCorpus) { EXPECT_GT(replay("image", image_input), 5u); }
 TEST(FuzzRegression, RasterCorpus) { EXPECT_GT(replay("raster", raster_input), 5u); }
+TEST(FuzzRegression, ModelCorpus) { EXPECT_GT(replay("model", model_input), 5u); }
 
 }  // namespace
 }  // namespace tessera::fuzz

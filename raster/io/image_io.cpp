@@ -69,29 +69,61 @@ void write_image(const fs::path& path, const ImageView& image) {
     write_file_atomically(path, std::as_bytes(std::span(encoded.data(), encoded.size())));
 }
 
-FloatImage read_image(const fs::path& path) {
-    std::error_code ec;
-    if (!fs::is_regular_file(path, ec))
-        throw Error("cannot read " + describe(path) + ": no such file");
-    auto in = OIIO::ImageInput::open(path.string());
-    if (!in) {
-        std::string why = OIIO::geterror();
-        throw Error("cannot read " + describe(path) + ": " + (why.empty() ? "not an image" : why));
-    }
-    const OIIO::ImageSpec& spec = in->spec();
+namespace {
+
+// Colour as the file stores it: PNG (and glTF, which uses it) keeps alpha unassociated, and
+// OpenImageIO would otherwise premultiply it on reading, darkening every texel that is not
+// fully opaque (an alpha-masked texture's cut-out texels would turn black).
+OIIO::ImageSpec straight_alpha() {
+    OIIO::ImageSpec config;
+    config.attribute("oiio:UnassociatedAlpha", 1);
+    return config;
+}
+
+// Decodes what `in` opened; `what` names the source in messages.
+FloatImage decode(OIIO::ImageInput& in, const std::string& what) {
+    const OIIO::ImageSpec& spec = in.spec();
     // Guard against absurd headers before allocating: a 200-byte file can claim gigapixels
     // (found by fuzz_image), and the float buffer is allocated before decoding starts. 2^28
     // floats (1 GiB) still holds an 8192x8192 RGBA texture.
     const uint64_t count = uint64_t(spec.width) * uint64_t(spec.height) * uint64_t(spec.nchannels);
     if (spec.width <= 0 || spec.height <= 0 || spec.nchannels <= 0 || count > (uint64_t(1) << 28))
-        throw Error("cannot read " + describe(path) + ": unsupported image size " +
-                    std::to_string(spec.width) + "x" + std::to_string(spec.height));
+        throw Error("cannot read " + what + ": unsupported image size " + std::to_string(spec.width) + "x" +
+                    std::to_string(spec.height));
     FloatImage image{spec.width, spec.height, spec.nchannels, std::vector<float>(count)};
-    if (!in->read_image(0, 0, 0, spec.nchannels, OIIO::TypeDesc::FLOAT, image.pixels.data())) {
-        std::string why = in->geterror();
-        throw Error("cannot read " + describe(path) + ": " + (why.empty() ? "decode failed" : why));
+    if (!in.read_image(0, 0, 0, spec.nchannels, OIIO::TypeDesc::FLOAT, image.pixels.data())) {
+        std::string why = in.geterror();
+        throw Error("cannot read " + what + ": " + (why.empty() ? "decode failed" : why));
     }
     return image;
+}
+
+}  // namespace
+
+FloatImage read_image(const fs::path& path) {
+    std::error_code ec;
+    if (!fs::is_regular_file(path, ec))
+        throw Error("cannot read " + describe(path) + ": no such file");
+    const OIIO::ImageSpec config = straight_alpha();
+    auto in = OIIO::ImageInput::open(path.string(), &config);
+    if (!in) {
+        std::string why = OIIO::geterror();
+        throw Error("cannot read " + describe(path) + ": " + (why.empty() ? "not an image" : why));
+    }
+    return decode(*in, describe(path));
+}
+
+FloatImage read_image_memory(std::span<const uint8_t> bytes, const std::string& name, const std::string& format) {
+    // OpenImageIO reads from memory through an IOProxy; the format is only the first reader
+    // tried (each checks the bytes' signature, and the others are tried after it).
+    OIIO::Filesystem::IOMemReader memory(bytes.data(), bytes.size());
+    const OIIO::ImageSpec config = straight_alpha();
+    auto in = OIIO::ImageInput::open("memory." + (format.empty() ? std::string("png") : format), &config, &memory);
+    if (!in) {
+        std::string why = OIIO::geterror();
+        throw Error("cannot read " + name + ": " + (why.empty() ? "not an image" : why));
+    }
+    return decode(*in, name);
 }
 
 }  // namespace tessera::io

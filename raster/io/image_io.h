@@ -8,6 +8,7 @@
 #include <cstdint>
 #include <filesystem>
 #include <span>
+#include <string>
 #include <vector>
 
 namespace tessera::io {
@@ -42,6 +43,11 @@ void write_image(const std::filesystem::path& path, const ImageView& image);
 
 // Reads any image OpenImageIO understands. Throws tessera::Error with the reason.
 FloatImage read_image(const std::filesystem::path& path);
+
+// The same from an encoded file in memory (an image stored inside a model file); `name` is
+// used in messages, `format` (a file extension without the dot: "png", "jpg") is the reader
+// tried first.
+FloatImage read_image_memory(std::span<const uint8_t> bytes, const std::string& name, const std::string& format);
 
 // True when `path` is an image OpenImageIO can open whose header says width x height: how
 // --resume recognises a finished frame (writes are atomic, so a present file is complete).

@@ -25,6 +25,7 @@ std::string obj_input(Bytes data);     // fuzz_obj.cpp: the OBJ loader
 std::string scene_input(Bytes data);   // fuzz_scene.cpp: the JSON scene reader
 std::string image_input(Bytes data);   // fuzz_image.cpp: image files as textures, TSID files
 std::string raster_input(Bytes data);  // fuzz_raster.cpp: tile rasterizer vs scalar reference
+std::string model_input(Bytes data);   // fuzz_model.cpp: the model importer (Assimp, isolated)
 
 }  // namespace tessera::fuzz
 
