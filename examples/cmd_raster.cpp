@@ -1,8 +1,10 @@
-// `tessera raster`: renders one OBJ mesh with one camera through the tile rasterizer (issue 3),
+// `tessera raster`: renders one mesh with one camera through the tile rasterizer (issue 3),
 // or with --renderer raytrace through Embree primary rays (issue 6): same visibility buffer,
 // same shading passes, same outputs.
 // Used by other tools for conformance (Mesa llvmpipe comparison) and benchmarking, so its flags,
 // file formats and the `frame_ms median=X min=Y max=Z` line are a contract.
+// --shade material renders the model with its own materials instead (issue 18): the scene
+// renderer both renderers share (render/frame_renderer.h), lit by the default light rig.
 #include <algorithm>
 #include <chrono>
 #include <memory>
@@ -10,15 +12,17 @@
 #include <vector>
 
 #include "examples/command.h"
+#include "examples/model_view.h"
 #include "raster/embree/ray_cast.h"
 #include "raster/embree/scene.h"
 #include "raster/embree/tile_passes.h"
 #include "raster/io/image_io.h"
-#include "raster/io/obj_loader.h"
 #include "raster/pipeline/rasterizer.h"
 #include "raster/shade/reference_shading.h"
 #include "raster/shade/stamp_shading.h"
 #include "raster/io/visibility_io.h"
+#include "raster/output/frame_encoding.h"
+#include "raster/render/frame_renderer.h"
 
 namespace tessera::cli {
 namespace {
@@ -33,6 +37,7 @@ struct Options {
     bool stats = false;
     int tile = 0;
     std::string renderer = "raster";
+    std::string shadows = "none";
 };
 
 void print_stats(const pipeline::RasterStats& s, double shade_ms) {
@@ -46,9 +51,45 @@ void print_stats(const pipeline::RasterStats& s, double shade_ms) {
                 (unsigned long long)s.visible_pixels);
 }
 
+// --shade material: the model's scene through the frame renderer.
+int run_material(const Options& o, int width, int height) {
+    if (!o.out_id.empty() || !o.out_depth.empty() || o.cull != "none" || o.tile)
+        throw UsageError("--out-id, --out-depth, --cull and --tile go with --shade id|depth|normal|phong");
+    if (!o.out_color.empty() && !io::image_format_supported(o.out_color))
+        throw UsageError("--out-color: no image writer for '" + o.out_color + "'");
+    const pipeline::Viewport viewport(width, height);  // checks the size limits
+    ModelView view = load_model_view(o.mesh, o.camera, width, height);
+    const auto threads = limit_threads(o.threads);
+    render::AnimatedScene scene = render::still_scene(std::move(view.scene));
+    render::FrameRenderer renderer(scene, width, height, render::parse_renderer(o.renderer),
+                                   render::parse_shadow_mode(o.shadows));
+    std::vector<double> frame_ms;
+    render::FrameStats stats;
+    Frame frame(1, 1);
+    for (int f = 0; f < std::max(1, o.repeat); ++f) {
+        frame = renderer.render(0.0f, &stats);
+        frame_ms.push_back(stats.total_ms);
+    }
+    if (!o.out_color.empty()) output::write_frame(o.out_color, frame);
+    if (o.repeat > 0) print_frame_times(frame_ms);
+    if (o.stats) {
+        std::printf("stats: model_triangles=%zu model_vertices=%zu skipped_triangles=%zu skipped_primitives=%zu "
+                    "read_ms=%.3f convert_ms=%.3f\n",
+                    view.stats.triangles, view.stats.vertices, view.stats.skipped_triangles,
+                    view.stats.skipped_primitives, view.stats.read_ms, view.stats.convert_ms);
+        std::printf("stats: bake_ms=%.3f bvh_ms=%.3f visibility_ms=%.3f tiles_ms=%.3f total_ms=%.3f "
+                    "shadowed_pixels=%llu\n",
+                    stats.bake_ms, stats.bvh_ms, stats.visibility_ms, stats.tiles_ms, stats.total_ms,
+                    (unsigned long long)stats.shadowed_pixels);
+    }
+    return 0;
+}
+
 int run(const Options& o) {
     int width = 0, height = 0;
     parse_size(o.size, "--size", width, height);
+    if (o.shade == "material") return run_material(o, width, height);
+    if (o.shadows != "none") throw UsageError("--shadows goes with --shade material");
     const pipeline::CullMode cull = parse_cull(o.cull);
     const shade::ShadeMode shade = shade::parse_shade_mode(o.shade);
     for (const std::string* path : {&o.out_color})
@@ -56,14 +97,13 @@ int run(const Options& o) {
             throw UsageError("--out-color: no image writer for '" + *path + "'");
     const pipeline::Viewport viewport(width, height);  // checks the size limits
 
-    const Camera camera = make_camera(o.camera, width, height);
-
     const bool raytrace = o.renderer == "raytrace";
     if (raytrace && (cull != pipeline::CullMode::none || o.tile))
         throw UsageError("--cull and --tile apply to --renderer raster only");
 
-    io::ObjLoadStats load;
-    Mesh mesh = io::load_obj(o.mesh, &load);
+    ModelMesh model = load_model_mesh(o.mesh);
+    Mesh& mesh = model.mesh;
+    const Camera camera = make_camera_or_frame(o.camera, width, height, model.box);
     if (raytrace) embree::reserve_ray_padding(mesh);  // lets Embree share the vertex buffer
     const auto threads = limit_threads(o.threads);
 
@@ -111,8 +151,16 @@ int run(const Options& o) {
 
     if (o.repeat > 0) print_frame_times(frame_ms);
     if (o.stats) {
-        std::printf("stats: obj_faces=%zu obj_triangles=%zu bad_vertices=%zu skipped_triangles=%zu\n", load.faces,
-                    load.triangles, load.bad_vertices, load.skipped_triangles);
+        const io::ObjLoadStats& load = model.obj_stats;
+        if (model.obj)
+            std::printf("stats: obj_faces=%zu obj_triangles=%zu bad_vertices=%zu skipped_triangles=%zu\n",
+                        load.faces, load.triangles, load.bad_vertices, load.skipped_triangles);
+        else
+            std::printf("stats: model_triangles=%zu model_vertices=%zu skipped_triangles=%zu skipped_primitives=%zu "
+                        "read_ms=%.3f convert_ms=%.3f\n",
+                        model.model_stats.triangles, model.model_stats.vertices, model.model_stats.skipped_triangles,
+                        model.model_stats.skipped_primitives, model.model_stats.read_ms,
+                        model.model_stats.convert_ms);
         if (raytrace) {
             const embree::MeshDefects& d = scene->defects();
             std::printf("stats: bvh_build_ms=%.3f trace_ms=%.3f shade_ms=%.3f\n", build_ms, trace_ms, shade_ms);
@@ -128,11 +176,19 @@ int run(const Options& o) {
 Run define_raster(CLI::App& root) {
     auto options = std::make_shared<Options>();
     Options& o = *options;
-    CLI::App* cmd = root.add_subcommand("raster", "render one OBJ mesh with one camera through the tile rasterizer");
-    cmd->add_option("--mesh", o.mesh, "OBJ file (faces fan-triangulated; triangle id = order in file)")->required();
+    CLI::App* cmd = root.add_subcommand("raster", "render one mesh with one camera through the tile rasterizer");
+    cmd->add_option("--mesh", o.mesh,
+                    "model file: OBJ (faces fan-triangulated; triangle id = order in file), glTF 2.0 "
+                    "(.gltf/.glb), PLY, STL, FBX... (through Assimp; parts in node order)")
+        ->required();
     cmd->add_option("--size", o.size, "image size WIDTHxHEIGHT (at most 8192x8192)")->default_val("1920x1080");
     add_camera_options(*cmd, o.camera);
-    cmd->add_option("--shade", o.shade, "id | depth | normal | phong")->default_val("phong");
+    cmd->add_option("--shade", o.shade,
+                    "id | depth | normal | phong | material (the model's own materials, default light rig)")
+        ->default_val("phong");
+    cmd->add_option("--shadows", o.shadows, "none | map | rays (with --shade material)")
+        ->check(CLI::IsMember({"none", "map", "rays"}))
+        ->default_val("none");
     cmd->add_option("--cull", o.cull, "none | back | front (front faces are counter-clockwise)")->default_val("none");
     add_threads_option(*cmd, o.threads);
     cmd->add_option("--out-color", o.out_color, "colour image (PNG, EXR, TIFF...; 8-bit RGB)");

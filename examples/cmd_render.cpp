@@ -29,6 +29,7 @@
 #include "examples/distribute.h"
 #include "examples/progress.h"
 #include "examples/render_farm.h"
+#include "raster/asset/framing.h"
 #include "raster/core/error.h"
 #include "examples/farm/frame_claim.h"
 #include "raster/io/image_io.h"
@@ -163,7 +164,14 @@ int run(const Options& o, const std::string& executable) {
     if (!o.trace.empty()) trace.activate();
     render::AnimatedScene scene = [&] {
         TraceScope t("build scene");
-        return scene_file::build_scene(spec);
+        std::vector<std::string> build_warnings;
+        render::AnimatedScene built = scene_file::build_scene(spec, &build_warnings);
+        if (rank0) {
+            for (const std::string& w : build_warnings) std::fprintf(stderr, "tessera: warning: %s\n", w.c_str());
+            if (!spec.camera_given)
+                std::fprintf(stderr, "tessera: camera (framed): %s\n", asset::camera_flags(built.camera.camera).c_str());
+        }
+        return built;
     }();
     render::FrameRenderer frame_renderer(scene, width, height, renderer, shadows);
     output::FrameWriter writer(2);

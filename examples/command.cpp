@@ -5,6 +5,7 @@
 #include <cstdio>
 #include <sstream>
 
+#include "raster/asset/framing.h"
 #include "raster/io/camera_file.h"
 
 namespace tessera::cli {
@@ -73,6 +74,23 @@ Camera make_camera(const CameraFlags& flags, int width, int height) {
     if (flags.far) camera.far = *flags.far;
     camera.aspect = float(width) / float(height);
     io::validate_camera(camera);
+    return camera;
+}
+
+Camera make_camera_or_frame(const CameraFlags& flags, int width, int height, const std::optional<Box>& box) {
+    if (!box || !flags.file.empty() || !flags.eye.empty()) return make_camera(flags, width, height);
+    Camera camera;
+    try {
+        camera = asset::frame_box(box->lower, box->upper, float(width) / float(height), flags.fov.value_or(45.0f));
+    } catch (const std::invalid_argument& e) {
+        throw UsageError(std::string("--fov: ") + e.what());
+    }
+    if (!flags.lookat.empty()) camera.lookat = parse_vec3(flags.lookat, "--lookat");
+    if (!flags.up.empty()) camera.up = parse_vec3(flags.up, "--up");
+    if (flags.near) camera.near = *flags.near;
+    if (flags.far) camera.far = *flags.far;
+    io::validate_camera(camera);
+    std::fprintf(stderr, "tessera: camera (framed): %s\n", asset::camera_flags(camera).c_str());
     return camera;
 }
 

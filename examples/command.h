@@ -58,6 +58,15 @@ void add_camera_options(CLI::App& command, CameraFlags& flags);
 // cannot form a view (validate_camera).
 Camera make_camera(const CameraFlags& flags, int width, int height);
 
+// The camera for geometry inside the box [lower, upper]: the flags' own when they give a pose
+// (--camera or --eye); otherwise the box framed (raster/asset/framing.h) with the flags'
+// --lookat, --up, --fov, --near and --far applied over it, printed on stderr as the flags that
+// give it again ("tessera: camera (framed): --eye ..."). Without a box (an empty mesh), make_camera.
+struct Box {
+    glm::vec3 lower, upper;
+};
+Camera make_camera_or_frame(const CameraFlags& flags, int width, int height, const std::optional<Box>& box);
+
 // "none" | "back" | "front" (--cull); UsageError otherwise.
 pipeline::CullMode parse_cull(const std::string& text);
 

@@ -12,7 +12,9 @@
 #include "raster/geometry/box.h"
 #include "raster/geometry/param_surface.h"
 #include "raster/geometry/surfaces.h"
-#include "raster/io/obj_loader.h"
+#include "raster/asset/framing.h"
+#include "raster/asset/light_rig.h"
+#include "raster/asset/model_import.h"
 #include "raster/scene_file/rd_texture.h"
 #include "raster/scene_file/scene_file_error.h"
 #include "raster/geometry/snake.h"
@@ -93,6 +95,58 @@ uint32_t material_index(const SceneSpec& spec, const std::string& name) {
     throw std::invalid_argument("material '" + name + "' is not defined");
 }
 
+// The object turning about its spin axis, after its own transform.
+void add_spin(scene::Object& object, const ObjectSpec& o) {
+    if (o.spin == 0.0f) return;
+    const scene::Transform base = o.transform;
+    const glm::vec3 axis = o.spin_axis;
+    const float spin = o.spin;
+    auto inner = object.animate;
+    object.animate = [base, axis, spin, inner](scene::Object& self, float time) {
+        if (inner) inner(self, time);
+        self.transform = spun(base, axis, spin, time);
+    };
+}
+
+// A model file's parts as objects, each placed by the object's transform; with its own
+// materials and textures, or all in the object's material.
+void add_model(scene::Scene& scene, const SceneSpec& spec, const ObjectSpec& o, std::vector<std::string>* warnings) {
+    const std::filesystem::path path = o.file.is_absolute() ? o.file : spec.file.parent_path() / o.file;
+    asset::ImportedModel model;
+    try {
+        model = asset::import_model(path);
+    } catch (const Error& e) {
+        throw SceneFileError(spec.file.string() + ": object '" + o.name + "': " + e.what());
+    }
+    if (warnings)
+        for (const std::string& w : model.warnings) warnings->push_back("object '" + o.name + "': " + w);
+    std::optional<uint32_t> material;
+    if (!o.material.empty()) material = material_index(spec, o.material);
+    asset::add_to_scene(scene, std::move(model), o.transform, o.name, material);
+}
+
+// A scene without a camera is framed as it stands at time 0 (asset/framing.h); one without
+// lights gets the default rig (asset/light_rig.h), placed for that camera.
+void frame_and_light(render::AnimatedScene& out, const SceneSpec& spec) {
+    scene::Scene& scene = out.scene;
+    if (scene.objects.empty()) return;
+    scene.animate(0.0f);
+    const scene::BakedScene baked = scene::bake(scene);
+    if (baked.mesh.positions.empty()) return;
+    glm::vec3 lower = baked.mesh.positions[0], upper = lower;
+    for (const glm::vec3& p : baked.mesh.positions) {
+        lower = glm::min(lower, p);
+        upper = glm::max(upper, p);
+    }
+    if (!spec.camera_given) {
+        out.camera = render::CameraSpec{};
+        // Framed for an aspect of at most 1, so that the scene fits any landscape --size too.
+        out.camera.camera = asset::frame_box(lower, upper, std::min(1.0f, float(spec.size.x) / float(spec.size.y)));
+        scene.camera = out.camera.camera;
+    }
+    if (!spec.lights_given) scene.lights = asset::default_light_rig(out.camera.camera, lower, upper);
+}
+
 void add_snake(scene::Scene& scene, const SceneSpec& spec, const ObjectSpec& o,
                const std::shared_ptr<const Ground>& ground) {
     const SnakeSpec snake = o.snake;
@@ -136,7 +190,7 @@ void add_snake(scene::Scene& scene, const SceneSpec& spec, const ObjectSpec& o,
 
 }  // namespace
 
-render::AnimatedScene build_scene(const SceneSpec& spec) {
+render::AnimatedScene build_scene(const SceneSpec& spec, std::vector<std::string>* warnings) {
     render::AnimatedScene out;
     scene::Scene& scene = out.scene;
     scene.lights = spec.lights;
@@ -158,6 +212,12 @@ render::AnimatedScene build_scene(const SceneSpec& spec) {
     std::map<std::string, std::shared_ptr<const Ground>> grounds;
     for (const ObjectSpec& o : spec.objects) {
         if (o.shape == ObjectSpec::Shape::snake) continue;  // after every ground exists
+        if (o.shape == ObjectSpec::Shape::mesh) {
+            const size_t first = scene.objects.size();
+            add_model(scene, spec, o, warnings);
+            for (size_t i = first; i < scene.objects.size(); ++i) add_spin(scene.objects[i], o);
+            continue;
+        }
         scene::Object object{o.name, nullptr, material_index(spec, o.material), o.transform, {}};
         const glm::ivec2 g = o.tessellation;
         switch (o.shape) {
@@ -201,27 +261,10 @@ render::AnimatedScene build_scene(const SceneSpec& spec) {
                 grounds[o.name] = ground;
                 break;
             }
-            case ObjectSpec::Shape::mesh: {
-                const std::filesystem::path path = o.file.is_absolute() ? o.file : spec.file.parent_path() / o.file;
-                try {
-                    object.geometry = std::make_shared<const Mesh>(io::load_obj(path));
-                } catch (const Error& e) {
-                    throw SceneFileError(spec.file.string() + ": object '" + o.name + "': " + e.what());
-                }
-                break;
-            }
+            case ObjectSpec::Shape::mesh: break;
             case ObjectSpec::Shape::snake: break;
         }
-        if (o.spin != 0.0f) {
-            const scene::Transform base = o.transform;
-            const glm::vec3 axis = o.spin_axis;
-            const float spin = o.spin;
-            auto inner = object.animate;
-            object.animate = [base, axis, spin, inner](scene::Object& self, float time) {
-                if (inner) inner(self, time);
-                self.transform = spun(base, axis, spin, time);
-            };
-        }
+        add_spin(object, o);
         scene.objects.push_back(std::move(object));
     }
     for (const ObjectSpec& o : spec.objects)
@@ -231,6 +274,7 @@ render::AnimatedScene build_scene(const SceneSpec& spec) {
     out.camera = spec.camera;
     out.passes = spec.passes;
     scene.validate();
+    if (!spec.camera_given || !spec.lights_given) frame_and_light(out, spec);
     return out;
 }
 

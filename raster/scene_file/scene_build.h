@@ -2,6 +2,9 @@
 // loaded once, geometry tessellated, and an animate hook on every object that moves (spins,
 // waving flags, writhing snakes), so a frame at time t is scene.animate(t) then bake().
 #pragma once
+#include <string>
+#include <vector>
+
 #include "raster/render/animated_scene.h"
 #include "raster/scene_file/scene_spec.h"
 
@@ -9,6 +12,7 @@ namespace tessera::scene_file {
 
 // Throws SceneFileError for a texture or OBJ file that cannot be read (naming the scene file
 // and the texture or object), std::invalid_argument for values the generators reject.
-render::AnimatedScene build_scene(const SceneSpec& spec);
+// Warnings (a model's texture that is missing, ...) are appended to `warnings` when given.
+render::AnimatedScene build_scene(const SceneSpec& spec, std::vector<std::string>* warnings = nullptr);
 
 }  // namespace tessera::scene_file

@@ -268,7 +268,8 @@ ObjectSpec parse_object(const JsonNode& n, size_t index) {
     n.expect_object();
     ObjectSpec o;
     o.name = n.string("name", "object " + std::to_string(index));
-    o.material = n.at("material").as_string();
+    // A mesh brings its own materials; "material" overrides them.
+    if (n.string("type", "") != "mesh" || n.find("material")) o.material = n.at("material").as_string();
     if (const auto t = n.find("transform")) o.transform = parse_transform(*t);
     if (const auto spin = n.find("spin")) {
         spin->expect_object();
@@ -429,6 +430,7 @@ void check_references(const SceneSpec& s, const JsonNode& root) {
     }
     for (size_t i = 0; i < s.objects.size(); ++i) {
         const ObjectSpec& o = s.objects[i];
+        if (o.shape == ObjectSpec::Shape::mesh && o.material.empty()) continue;  // its own materials
         if (!named(s.materials, o.material))
             objects[i].at("material").fail("material '" + o.material + "' is not defined in /materials");
         if (o.shape != ObjectSpec::Shape::snake) continue;
@@ -489,10 +491,15 @@ SceneSpec parse_scene(const std::string& json_text, const std::string& label,
 
     SceneSpec s;
     s.description = root.string("description", "");
-    if (const auto c = root.find("camera")) s.camera = parse_camera(*c);
+    if (const auto c = root.find("camera")) {
+        s.camera = parse_camera(*c);
+        s.camera_given = true;
+    }
     if (const auto b = root.find("background")) s.background = parse_background(*b);
-    if (const auto lights = root.find("lights"))
+    if (const auto lights = root.find("lights")) {
         for (const JsonNode& l : lights->elements()) s.lights.push_back(parse_light(l));
+        s.lights_given = true;
+    }
     if (const auto textures = root.find("textures"))
         for (const auto& [name, t] : textures->members()) s.textures.push_back(parse_texture(name, t));
     if (const auto materials = root.find("materials"))

@@ -88,7 +88,9 @@ struct ObjectSpec {
     glm::vec3 box_size{1.0f};
     HeightfieldSpec heightfield;
     SnakeSpec snake;
-    // mesh: a Wavefront OBJ file (relative paths resolve against the scene file)
+    // mesh: a model file (OBJ + MTL, glTF 2.0, PLY, ... through raster/asset/model_import.h;
+    // relative paths resolve against the scene file) with its own materials, or every part in
+    // `material` when that is set
     std::filesystem::path file;
 };
 
@@ -101,8 +103,10 @@ struct SceneSpec {
     std::filesystem::path file;  // where it was read from (relative paths resolve against it)
     std::string description;
     render::CameraSpec camera;
+    bool camera_given = false;  // else build_scene frames the scene's objects (asset/framing.h)
     scene::Background background;
     std::vector<scene::Light> lights;
+    bool lights_given = false;  // else build_scene lights it with the default rig (asset/light_rig.h)
     std::vector<TextureSpec> textures;
     std::vector<MaterialSpec> materials;
     std::vector<ObjectSpec> objects;
