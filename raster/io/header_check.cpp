@@ -39,6 +39,14 @@ int ply_type_bytes(const std::string& type) {
 
 std::string counted(uint64_t n, const std::string& what) { return std::to_string(n) + " " + what; }
 
+// A word of the header as messages quote it: binary garbage shown as '?', at most 40 characters.
+std::string shown(const std::string& word) {
+    std::string out = word.substr(0, 40);
+    for (char& c : out)
+        if (!std::isprint(static_cast<unsigned char>(c))) c = '?';
+    return "'" + out + (word.size() > 40 ? "...'" : "'");
+}
+
 // PLY: "element NAME COUNT" lines, each followed by its "property" lines, up to "end_header".
 std::optional<std::string> check_ply(const std::string& head, uint64_t file_size) {
     std::istringstream lines(head);
@@ -69,14 +77,14 @@ std::optional<std::string> check_ply(const std::string& head, uint64_t file_size
             std::string count;
             words >> e.name >> count;
             if (!parse_count(count, e.count))
-                return "PLY header line " + std::to_string(number) + ": '" + count + "' is not an element count";
+                return "PLY header line " + std::to_string(number) + ": " + shown(count) + " is not an element count";
             elements.push_back(e);
         } else if (keyword == "property" && !elements.empty()) {
             std::string type;
             words >> type;
             if (type == "list") words >> type;  // the count's type: a list holds at least its count
             const int bytes = ply_type_bytes(type);
-            if (bytes == 0) return "PLY header line " + std::to_string(number) + ": unknown property type '" + type + "'";
+            if (bytes == 0) return "PLY header line " + std::to_string(number) + ": unknown property type " + shown(type);
             elements.back().bytes += ascii ? 2 : uint64_t(bytes);
         } else if (keyword == "end_header") {
             ended = true;
@@ -89,7 +97,7 @@ std::optional<std::string> check_ply(const std::string& head, uint64_t file_size
     const uint64_t body = file_size > header_end ? file_size - header_end : 0;
     if (need <= body) return std::nullopt;
     std::string list;
-    for (const Element& e : elements) list += (list.empty() ? "" : ", ") + counted(e.count, "'" + e.name + "'");
+    for (const Element& e : elements) list += (list.empty() ? "" : ", ") + counted(e.count, shown(e.name));
     return "the PLY header declares " + list + " elements, more than the file's " + std::to_string(body) +
            " bytes of data can hold";
 }
