@@ -205,6 +205,7 @@ int run(const Options& o, const std::string& executable) {
     const auto start = std::chrono::steady_clock::now();
     std::vector<double> totals, animate, bake, bvh, visibility, tiles;
     size_t done = 0;
+    Frame frame;  // reused: every frame is rendered into the same buffer
     while (const std::optional<int> next = dist.next_frame()) {
         if (g_interrupted) break;
         const int f = *next;
@@ -235,13 +236,12 @@ int run(const Options& o, const std::string& executable) {
             }
             writer.record_written(path);
         } else {
-            Frame frame;
             std::string failure = std::move(tile_failure);
             tile_failure.clear();
             try {
                 farm.simulate(f);
                 TraceScope t("frame", "frame", f);
-                frame = frame_renderer.render(float(f) / fps, &st);
+                frame_renderer.render(float(f) / fps, frame, &st);
             } catch (const std::exception& e) {
                 if (dist.ranks() == 1) throw;
                 if (failure.empty()) failure = e.what();

@@ -7,6 +7,7 @@
 
 #include <filesystem>
 #include <fstream>
+#include <limits>
 #include <set>
 #include <string>
 
@@ -141,6 +142,30 @@ TEST(RenderFrame, SameBytesWithOneAndTwoThreads) {
             const Frame two = render_scene(kBallOverFloor, 96, 64, r, s, 2);
             ASSERT_EQ(one.pixels.size(), two.pixels.size());
             EXPECT_EQ(0, std::memcmp(one.pixels.data(), two.pixels.data(), one.pixels.size() * sizeof(glm::vec4)));
+        }
+}
+
+// An animation renders every frame into one reused buffer: what it held before (another
+// frame, another size, garbage) must not show, for either renderer, with or without set_rows.
+TEST(RenderFrame, AReusedFrameBufferGivesTheSameBytesAsAFreshOne) {
+    for (render::RendererKind r : {render::RendererKind::raster, render::RendererKind::raytrace})
+        for (const bool rows : {false, true}) {
+            render::AnimatedScene scene = scene_from(kBallOverFloor);
+            render::FrameRenderer renderer(scene, 96, 64, r, render::ShadowMode::rays);
+            if (rows) renderer.set_rows(10, 40);
+            const Frame fresh = renderer.render(0.5f);
+            Frame reused(96, 64, glm::vec4(std::numeric_limits<float>::quiet_NaN()));
+            renderer.render(0.1f, reused);
+            renderer.render(0.5f, reused);
+            Frame resized(7, 3, glm::vec4(9.0f));
+            renderer.render(0.5f, resized);
+            for (const Frame* f : {&reused, &resized}) {
+                ASSERT_EQ(f->width, 96);
+                ASSERT_EQ(f->height, 64);
+                ASSERT_EQ(f->pixels.size(), fresh.pixels.size());
+                EXPECT_EQ(0, std::memcmp(f->pixels.data(), fresh.pixels.data(), fresh.pixels.size() * sizeof(glm::vec4)))
+                    << int(r) << " rows " << rows;
+            }
         }
 }
 

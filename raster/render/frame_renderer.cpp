@@ -108,6 +108,8 @@ struct FrameRenderer::Impl {
     std::optional<embree::RayDevice> device;
     std::vector<procedural::TerrainField> terrains;  // one per terrain pass, built once
     int rows_first = 0, rows_last = 1 << 30;  // set_rows
+    // Reused from frame to frame (and region to region): its pages are touched once.
+    VisibilityBuffer visibility;
 
     Impl(AnimatedScene& s, int w, int h, RendererKind r, ShadowMode sh)
         : scene(s), width(w), height(h), renderer(r), shadows(sh) {
@@ -163,16 +165,24 @@ void FrameRenderer::Impl::frame(float time, FrameStats* stats, const Body& body)
 }
 
 Frame FrameRenderer::render(float time, FrameStats* stats) {
+    Frame frame;
+    render(time, frame, stats);
+    return frame;
+}
+
+void FrameRenderer::render(float time, Frame& frame, FrameStats* stats) {
     Impl& im = *impl_;
     if (needs_bands(im.width, im.height))
         throw std::invalid_argument("a " + std::to_string(im.width) + "x" + std::to_string(im.height) +
                                     " frame is rendered in bands (render_bands)");
-    Frame frame(im.width, im.height);
+    // Every pixel is written below (render_region), so a reused frame needs no clearing.
+    frame.width = im.width;
+    frame.height = im.height;
+    frame.pixels.resize(size_t(im.width) * size_t(im.height));
     im.frame(time, stats, [&](const FrameState& state, FrameStats& st) {
         im.render_region(state, Region{im.scene.scene.camera, im.width, im.height}, frame.pixels, im.rows_first,
                          im.rows_last, st);
     });
-    return frame;
 }
 
 void FrameRenderer::render_bands(float time, const BandLayout& layout, const BandFilter& mine,
@@ -380,7 +390,6 @@ void FrameRenderer::Impl::render_region(const FrameState& frame, const Region& r
     const int w = region.width, h = region.height;
     const RegionPasses passes(scene, frame, region, terrains);
     std::atomic<uint64_t> shadowed{0};
-    VisibilityBuffer visibility;
     const auto in_rows = [&](const TileRect& r) { return r.y1 > rows_from && r.y0 < rows_to; };
 
     if (renderer == RendererKind::raster) {
@@ -409,8 +418,15 @@ void FrameRenderer::Impl::render_region(const FrameState& frame, const Region& r
         const auto t0 = Clock::now();
         colour.resize(size_t(w) * size_t(h));
         parallel_for_tiles(TileGrid(w, h, 64), [&](int, const TileRect& rect) {
-            if (in_rows(rect)) run_tile_passes(frame, passes, visibility, frame_tile(visibility, colour.data(), rect),
-                                               nullptr, shadowed);
+            const Tile tile = frame_tile(visibility, colour.data(), rect);
+            if (in_rows(rect)) {
+                run_tile_passes(frame, passes, visibility, tile, nullptr, shadowed);
+                return;
+            }
+            // Unshaded, as the rasterizer leaves such tiles (its clear colour), whatever the
+            // reused buffer held.
+            for (int y = rect.y0; y < rect.y1; ++y)
+                std::fill_n(&tile.colour_at(rect.x0, y), rect.width(), glm::vec4(0.0f));
         });
         stats.tiles_ms += ms_since(t0);
     }

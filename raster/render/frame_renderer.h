@@ -61,6 +61,9 @@ public:
     // The frame at `time` seconds, linear RGBA. Throws std::invalid_argument for a frame that
     // needs bands (needs_bands()).
     Frame render(float time, FrameStats* stats = nullptr);
+    // The same into `frame`, whose storage is reused when it already has the renderer's size:
+    // an animation renders every frame into one buffer instead of faulting in a new one.
+    void render(float time, Frame& frame, FrameStats* stats = nullptr);
 
     // The frame at `time` seconds as the bands of `layout` (whose size must be the
     // renderer's): for each band b with mine(b), in increasing b, calls deliver(b, pixels)
