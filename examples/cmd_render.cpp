@@ -2,7 +2,8 @@
 //   tessera render --scene NAME|FILE.json [--size WxH] [--frames A:B] [--fps F]
 //                  [--out out/NAME_####.png|.exr|.tif] [--threads N]
 //                  [--renderer raster|raytrace] [--shadows none|map|rays]
-//                  [--resume] [--shard I/N] [--stats] [--trace FILE.json] [--quiet]
+//                  [--png fast|small] [--resume] [--shard I/N] [--stats] [--trace FILE.json]
+//                  [--quiet]
 // Frames are encoded and written on a background thread (FrameWriter) while the next one
 // renders, each atomically (temp name + rename), so an interrupted run leaves only complete
 // frames and --resume skips them. Frames beyond one 8192x8192 pass are rendered band by band
@@ -63,7 +64,7 @@ constexpr int kMaxSide = 65536;
 
 struct Options {
     std::string scene = "snakes";
-    std::string size, frames, out, renderer = "raster", shadows, shard = "0/1", trace;
+    std::string size, frames, out, renderer = "raster", shadows, shard = "0/1", trace, png = "fast";
     float fps = 0.0f;
     int threads = 0;
     bool resume = false, stats = false, quiet = false;
@@ -174,7 +175,7 @@ int run(const Options& o, const std::string& executable) {
         return built;
     }();
     render::FrameRenderer frame_renderer(scene, width, height, renderer, shadows);
-    output::FrameWriter writer(2);
+    output::FrameWriter writer(2, output::FileSettings{output::parse_png_compression(o.png)});
     FarmRun farm(o.farm, o.resume, scene, spec.textures, scene_name, pattern.path_for(range.first));
     const bool banded = render::needs_bands(width, height);
     const render::BandLayout layout = render::band_layout(width, height);
@@ -347,6 +348,11 @@ TESSERA_COMMAND(20, [](CLI::App& root) -> Run {
         ->capture_default_str();
     cmd->add_option("--shadows", o->shadows, "Shadows: none, map or rays (default: the scene's)")
         ->check(CLI::IsMember({"none", "map", "rays"}));
+    cmd->add_option("--png", o->png,
+                    "PNG compression: fast (Paeth filter, zlib run-length; for animation work) or small "
+                    "(adaptive filters, zlib level 9; slower, smaller files)")
+        ->check(CLI::IsMember({"fast", "small"}))
+        ->capture_default_str();
     cmd->add_flag("--resume", o->resume, "Skip frames whose files are already complete");
     cmd->add_option("--shard", o->shard, "Render shard I of N (every N-th frame from the I-th, 0-based)")
         ->capture_default_str();

@@ -4,8 +4,13 @@
 #include <cctype>
 #include <string>
 
-#include "raster/io/image_io.h"
+#include <tbb/parallel_for.h>
+
+#include "raster/core/atomic_file.h"
 #include "raster/core/color_space.h"
+#include "raster/core/error.h"
+#include "raster/io/image_io.h"
+#include "raster/output/srgb8.h"
 
 namespace tessera::output {
 namespace {
@@ -30,7 +35,17 @@ std::string lower_extension(const std::filesystem::path& path) {
 
 }  // namespace
 
-std::vector<uint8_t> encode_srgb8(const Frame& frame) { return encode<uint8_t>(frame, 255.0f); }
+std::vector<uint8_t> encode_srgb8(const Frame& frame) {
+    std::vector<uint8_t> out(frame.pixels.size() * 4);
+    // Rows of pixels in parallel: each value is encoded on its own, so the split does not
+    // change a byte.
+    constexpr size_t kChunk = 16384;
+    tbb::parallel_for(size_t(0), (frame.pixels.size() + kChunk - 1) / kChunk, [&](size_t c) {
+        const size_t first = c * kChunk, n = std::min(kChunk, frame.pixels.size() - first);
+        encode_srgb8(frame.pixels.data() + first, n, out.data() + 4 * first);
+    });
+    return out;
+}
 std::vector<uint16_t> encode_srgb16(const Frame& frame) { return encode<uint16_t>(frame, 65535.0f); }
 
 io::PixelType frame_pixel_type(const std::filesystem::path& path) {
@@ -54,8 +69,22 @@ OwnedImage encode_frame(const std::filesystem::path& path, const Frame& frame) {
     return image;
 }
 
-void write_frame(const std::filesystem::path& path, const Frame& frame) {
-    io::write_image(path, encode_frame(path, frame).view());
+void write_encoded(const std::filesystem::path& path, const OwnedImage& image, const FileSettings& settings) {
+    if (lower_extension(path) == ".png" && image.type == io::PixelType::u8 && image.width > 0 && image.height > 0) {
+        std::vector<uint8_t> file;
+        try {
+            file = encode_png(image.bytes.data(), image.width, image.height, image.channels, settings.png);
+        } catch (const std::exception& e) {
+            throw Error("cannot write '" + path.string() + "': " + e.what());
+        }
+        write_file_atomically(path, std::as_bytes(std::span(file.data(), file.size())));
+        return;
+    }
+    io::write_image(path, image.view());
+}
+
+void write_frame(const std::filesystem::path& path, const Frame& frame, const FileSettings& settings) {
+    write_encoded(path, encode_frame(path, frame), settings);
 }
 
 }  // namespace tessera::output

@@ -1,9 +1,9 @@
 // The output of a rendered frame (core/frame.h) to files.
 //
 // write_frame() picks the encoding from the extension, converting colour space in exactly one
-// place (color_space.h):
+// place (color_space.h; srgb8.h is its 8-bit table form):
 //   .exr            32-bit float RGBA, linear, unchanged (for compositing and comparisons);
-//   .png            8-bit RGBA, RGB sRGB-encoded, alpha linear;
+//   .png            8-bit RGBA, RGB sRGB-encoded, alpha linear, written by png_encoder.h;
 //   .tif / .tiff    16-bit RGBA, RGB sRGB-encoded, alpha linear;
 //   anything else OpenImageIO writes: 8-bit sRGB like PNG.
 // The file is written atomically (image_io.h).
@@ -16,6 +16,7 @@
 
 #include "raster/core/frame.h"
 #include "raster/output/frame_writer.h"
+#include "raster/output/png_encoder.h"
 
 namespace tessera::output {
 
@@ -32,8 +33,13 @@ io::PixelType frame_pixel_type(const std::filesystem::path& path);
 // background FrameWriter (frame_writer.h).
 OwnedImage encode_frame(const std::filesystem::path& path, const Frame& frame);
 
-// encode_frame + write_image. Throws tessera::Error (unwritable path, unknown extension)
+// Writes an image encode_frame made for `path`: PNG through png_encoder.h, other formats
+// through OpenImageIO (io/image_io.h); atomically either way. Throws tessera::Error naming
+// the file.
+void write_encoded(const std::filesystem::path& path, const OwnedImage& image, const FileSettings& settings = {});
+
+// encode_frame + write_encoded. Throws tessera::Error (unwritable path, unknown extension)
 // naming the file.
-void write_frame(const std::filesystem::path& path, const Frame& frame);
+void write_frame(const std::filesystem::path& path, const Frame& frame, const FileSettings& settings = {});
 
 }  // namespace tessera::output

@@ -1,11 +1,12 @@
 #include "raster/output/frame_writer.h"
 
 #include "raster/core/trace.h"
+#include "raster/output/frame_encoding.h"
 
 namespace tessera::output {
 
-FrameWriter::FrameWriter(size_t max_pending)
-    : max_pending_(max_pending == 0 ? 1 : max_pending), worker_([this] { run(); }) {}
+FrameWriter::FrameWriter(size_t max_pending, const FileSettings& settings)
+    : max_pending_(max_pending == 0 ? 1 : max_pending), settings_(settings), worker_([this] { run(); }) {}
 
 FrameWriter::~FrameWriter() {
     {
@@ -63,7 +64,7 @@ void FrameWriter::run() {
         std::exception_ptr failure;
         try {
             TraceScope scope("write frame", "io");
-            io::write_image(job.path, job.image.view());
+            write_encoded(job.path, job.image, settings_);
         } catch (...) {
             failure = std::current_exception();
         }

@@ -13,8 +13,14 @@
 #include <vector>
 
 #include "raster/io/image_io.h"
+#include "raster/output/png_encoder.h"
 
 namespace tessera::output {
+
+// How the files are compressed (frame_encoding.h's write_encoded).
+struct FileSettings {
+    PngSettings png;
+};
 
 // Pixels the writer owns while the renderer moves on to the next frame.
 struct OwnedImage {
@@ -28,7 +34,7 @@ struct OwnedImage {
 
 class FrameWriter {
 public:
-    explicit FrameWriter(size_t max_pending = 1);
+    explicit FrameWriter(size_t max_pending = 1, const FileSettings& settings = {});
     ~FrameWriter();  // finishes queued writes; errors are dropped here (call finish() to see them)
     FrameWriter(const FrameWriter&) = delete;
     FrameWriter& operator=(const FrameWriter&) = delete;
@@ -51,6 +57,7 @@ private:
     void rethrow_failure_locked();
 
     const size_t max_pending_;
+    const FileSettings settings_;
     mutable std::mutex mutex_;
     std::condition_variable changed_;
     std::deque<Job> queue_;

@@ -1,0 +1,171 @@
+#include "raster/output/png_encoder.h"
+
+#include <tbb/parallel_for.h>
+#include <zlib.h>
+
+#include <algorithm>
+#include <cstdlib>
+#include <stdexcept>
+
+namespace tessera::output {
+namespace {
+
+// Section 9.2 filter types.
+enum : uint8_t { kNone = 0, kSub = 1, kUp = 2, kAverage = 3, kPaeth = 4 };
+
+uint8_t paeth_predictor(int a, int b, int c) {
+    const int p = a + b - c;
+    const int pa = std::abs(p - a), pb = std::abs(p - b), pc = std::abs(p - c);
+    return uint8_t(pa <= pb && pa <= pc ? a : (pb <= pc ? b : c));
+}
+
+// One filtered row: out[0] = the filter type, out[1 .. n] the residuals. `up` is the previous
+// row (zeros above the first row), `bpp` the bytes per pixel.
+void filter_row(uint8_t type, const uint8_t* row, const uint8_t* up, size_t n, size_t bpp, uint8_t* out) {
+    out[0] = type;
+    uint8_t* r = out + 1;
+    switch (type) {
+        case kNone: std::copy_n(row, n, r); break;
+        case kSub:
+            for (size_t i = 0; i < n; ++i) r[i] = uint8_t(row[i] - (i >= bpp ? row[i - bpp] : 0));
+            break;
+        case kUp:
+            for (size_t i = 0; i < n; ++i) r[i] = uint8_t(row[i] - up[i]);
+            break;
+        case kAverage:
+            for (size_t i = 0; i < n; ++i) r[i] = uint8_t(row[i] - ((i >= bpp ? row[i - bpp] : 0) + up[i]) / 2);
+            break;
+        default:
+            for (size_t i = 0; i < n; ++i)
+                r[i] = uint8_t(row[i] - paeth_predictor(i >= bpp ? row[i - bpp] : 0, up[i], i >= bpp ? up[i - bpp] : 0));
+            break;
+    }
+}
+
+// libpng's heuristic: the filter whose residuals, read as signed bytes, sum to the least.
+uint8_t choose_filter(const uint8_t* row, const uint8_t* up, size_t n, size_t bpp, std::vector<uint8_t>& scratch) {
+    uint8_t best = kNone;
+    uint64_t best_sum = ~uint64_t(0);
+    for (uint8_t type = kNone; type <= kPaeth; ++type) {
+        filter_row(type, row, up, n, bpp, scratch.data());
+        uint64_t sum = 0;
+        for (size_t i = 1; i <= n; ++i) sum += uint64_t(std::abs(int(int8_t(scratch[i]))));
+        if (sum < best_sum) {
+            best_sum = sum;
+            best = type;
+        }
+    }
+    return best;
+}
+
+void put32(std::vector<uint8_t>& out, uint32_t v) {
+    for (int s = 24; s >= 0; s -= 8) out.push_back(uint8_t(v >> s));
+}
+
+void put_chunk(std::vector<uint8_t>& out, const char type[4], const uint8_t* data, size_t n) {
+    put32(out, uint32_t(n));
+    const size_t start = out.size();
+    out.insert(out.end(), type, type + 4);
+    out.insert(out.end(), data, data + n);
+    put32(out, uint32_t(crc32(0, out.data() + start, uInt(n + 4))));
+}
+
+struct Band {
+    std::vector<uint8_t> deflated;
+    uLong adler = 1;
+    size_t raw_bytes = 0;
+};
+
+void compress_band(const uint8_t* pixels, int width, int channels, int y0, int y1, bool last,
+                   const PngSettings& s, Band& band) {
+    const size_t n = size_t(width) * size_t(channels), bpp = size_t(channels);
+    const std::vector<uint8_t> zeros(y0 == 0 ? n : 0, 0);
+    std::vector<uint8_t> filtered(size_t(y1 - y0) * (n + 1)), scratch(s.filter == PngFilter::adaptive ? n + 1 : 0);
+    for (int y = y0; y < y1; ++y) {
+        const uint8_t* row = pixels + size_t(y) * n;
+        const uint8_t* up = y == 0 ? zeros.data() : row - n;
+        uint8_t type = kNone;
+        switch (s.filter) {
+            case PngFilter::none: type = kNone; break;
+            case PngFilter::sub: type = kSub; break;
+            case PngFilter::up: type = kUp; break;
+            case PngFilter::average: type = kAverage; break;
+            case PngFilter::paeth: type = kPaeth; break;
+            case PngFilter::adaptive: type = choose_filter(row, up, n, bpp, scratch); break;
+        }
+        filter_row(type, row, up, n, bpp, filtered.data() + size_t(y - y0) * (n + 1));
+    }
+    band.raw_bytes = filtered.size();
+    band.adler = adler32(1, filtered.data(), uInt(filtered.size()));
+
+    z_stream z{};
+    // Raw deflate (negative window bits): the zlib header and trailer are written once, around
+    // all the bands.
+    if (deflateInit2(&z, s.level, Z_DEFLATED, -15, 9, s.run_length ? Z_RLE : Z_DEFAULT_STRATEGY) != Z_OK)
+        throw std::runtime_error("png: deflateInit2 failed");
+    band.deflated.resize(deflateBound(&z, uLong(filtered.size())) + 16);
+    z.next_in = filtered.data();
+    z.avail_in = uInt(filtered.size());
+    z.next_out = band.deflated.data();
+    z.avail_out = uInt(band.deflated.size());
+    const int status = deflate(&z, last ? Z_FINISH : Z_SYNC_FLUSH);
+    const bool ok = last ? status == Z_STREAM_END : (status == Z_OK && z.avail_in == 0 && z.avail_out > 0);
+    band.deflated.resize(band.deflated.size() - z.avail_out);
+    deflateEnd(&z);
+    if (!ok) throw std::runtime_error("png: deflate failed");
+}
+
+}  // namespace
+
+PngSettings parse_png_compression(std::string_view name) {
+    if (name == "fast") return PngSettings{};
+    if (name == "small") return PngSettings::smallest();
+    throw std::invalid_argument("--png: unknown compression '" + std::string(name) + "' (expected fast or small)");
+}
+
+std::vector<uint8_t> encode_png(const uint8_t* pixels, int width, int height, int channels,
+                                const PngSettings& settings) {
+    if (width <= 0 || height <= 0)
+        throw std::invalid_argument("png: image size " + std::to_string(width) + "x" + std::to_string(height) +
+                                    " is not positive");
+    if (channels < 1 || channels > 4) throw std::invalid_argument("png: 1 to 4 channels");
+    if (settings.level < 0 || settings.level > 9) throw std::invalid_argument("png: zlib level 0..9");
+    // A row plus its filter byte must fit zlib's 32-bit counts with a band of them.
+    if (uint64_t(width) * uint64_t(channels) + 1 > (uint64_t(1) << 31) / kPngBandRows)
+        throw std::invalid_argument("png: rows too wide");
+
+    const int bands = (height + kPngBandRows - 1) / kPngBandRows;
+    std::vector<Band> band(static_cast<size_t>(bands));
+    tbb::parallel_for(0, bands, [&](int b) {
+        const int y0 = b * kPngBandRows, y1 = std::min(height, y0 + kPngBandRows);
+        compress_band(pixels, width, channels, y0, y1, b + 1 == bands, settings, band[size_t(b)]);
+    });
+
+    std::vector<uint8_t> out = {0x89, 'P', 'N', 'G', '\r', '\n', 0x1A, '\n'};
+    static constexpr uint8_t kColourType[5] = {0, 0, 4, 2, 6};  // grey, grey+alpha, RGB, RGBA
+    const uint8_t header[13] = {uint8_t(width >> 24), uint8_t(width >> 16), uint8_t(width >> 8), uint8_t(width),
+                                uint8_t(height >> 24), uint8_t(height >> 16), uint8_t(height >> 8), uint8_t(height),
+                                8, kColourType[channels], 0, 0, 0};
+    put_chunk(out, "IHDR", header, sizeof header);
+    const uint8_t intent = 0;  // perceptual
+    put_chunk(out, "sRGB", &intent, 1);
+
+    // The zlib stream: a header (32K window, deflate; FCHECK makes it a multiple of 31), the
+    // bands, the Adler-32 of all the filtered bytes. One IDAT chunk per band.
+    const uint8_t level_bits = settings.level <= 1 ? 0 : settings.level <= 5 ? 1 : settings.level == 6 ? 2 : 3;
+    uint8_t zlib_header[2] = {0x78, uint8_t(level_bits << 6)};
+    zlib_header[1] = uint8_t(zlib_header[1] + (31 - (zlib_header[0] * 256 + zlib_header[1]) % 31) % 31);
+    uLong adler = 1;
+    for (const Band& b : band) adler = adler32_combine(adler, b.adler, z_off_t(b.raw_bytes));
+    for (int b = 0; b < bands; ++b) {
+        std::vector<uint8_t>& data = band[size_t(b)].deflated;
+        if (b == 0) data.insert(data.begin(), zlib_header, zlib_header + 2);
+        if (b + 1 == bands)
+            for (int s = 24; s >= 0; s -= 8) data.push_back(uint8_t(adler >> s));
+        put_chunk(out, "IDAT", data.data(), data.size());
+    }
+    put_chunk(out, "IEND", nullptr, 0);
+    return out;
+}
+
+}  // namespace tessera::output
