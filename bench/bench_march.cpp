@@ -152,7 +152,7 @@ void BM_MarchGradientNoise(benchmark::State& state) {
 }
 BENCHMARK(BM_MarchGradientNoise)->Apply(strategies);
 
-// Normals at a point: analytic gradient vs the seed's central differences (h = 0.05).
+// Normals at a point: analytic gradient vs central differences (h = 0.05).
 void BM_TerrainNormal(benchmark::State& state) {
     const procedural::TerrainField terrain(procedural::TerrainParams{});
     const NormalSettings settings{state.range(0) ? NormalMethod::central_differences : NormalMethod::analytic, 0.05f};

@@ -1,4 +1,4 @@
-// `tessera march`: renders one frame of a ray-marched scene (seeds/003: terrain, 16-sine noise,
+// `tessera march`: renders one frame of a ray-marched scene (terrain, 16-sine noise,
 // value-noise volume, gradient-noise surface, metaballs) with background and fog, through the rasterizer's tile stage, and
 // writes it as an image.
 //
@@ -51,14 +51,14 @@ struct MarchOptions {
 
 Run define_march(CLI::App& root) {
     auto o = std::make_shared<MarchOptions>();
-    CLI::App* cmd = root.add_subcommand("march", "render a ray-marched implicit surface with fog (seeds/003)");
+    CLI::App* cmd = root.add_subcommand("march", "render a ray-marched implicit surface with fog");
     cmd->add_option("--scene", o->scene, "terrain | sine-noise | noise-volume | gradient-noise | metaballs")->capture_default_str();
     cmd->add_option("--time", o->time, "animation time in seconds")->capture_default_str();
     cmd->add_option("--kernel", o->kernel, "metaball kernel: blinn | perlin | wyvill")->capture_default_str();
     cmd->add_option("--balls", o->balls, "metaball count (at least 3)")->capture_default_str();
     cmd->add_option("--steps", o->steps, "march steps per ray")->capture_default_str();
     cmd->add_option("--strategy", o->strategy, "uniform | geometric (+2 % per step)")->capture_default_str();
-    cmd->add_option("--max-step", o->max_step, "cap on the uniform step (0: none; the seed uses 0.05)");
+    cmd->add_option("--max-step", o->max_step, "cap on the uniform step (0: none; 0.05 suits a unit-thick slab)");
     cmd->add_option("--tolerance", o->tolerance, "bisection tolerance in world units")->capture_default_str();
     cmd->add_flag("--no-refine", o->no_refine, "skip the bisection after the first sign change");
     cmd->add_option("--normals", o->normals, "analytic | differences")->capture_default_str();

@@ -1,5 +1,5 @@
-// Implicit fields for ray marching (seeds/003): a scalar f(p) over 3-D space with its analytic
-// gradient. The surface is f = 0; f > 0 is inside the solid (the seed's terrain
+// Implicit fields for ray marching: a scalar f(p) over 3-D space with its analytic gradient.
+// The surface is f = 0; f > 0 is inside the solid (the terrain
 // f(p) = noise(p.xz) - p.y is positive below the ground), so the outward normal is
 // -gradient / |gradient|.
 //
@@ -46,10 +46,10 @@ protected:
                                  float* value) const;
 };
 
-// The seed's 3-D noise (seeds/003, "Egyszerű zaj"): 16 sines with wave vectors from the
+// A 3-D noise of 16 sines with wave vectors from the
 // 16-bit rotations of s = (7502, 22777, 4767),
 //   f(r) = sum_i sin(dot(s_i - 32768, 40 r) / 65536) / 32 + 0.5 - r.y.
-// Its gradient is sum_i cos(...) (s_i - 32768) 40 / 65536 / 32 - (0, 1, 0). (The seed's
+// Its gradient is sum_i cos(...) (s_i - 32768) 40 / 65536 / 32 - (0, 1, 0). (The GLSL original's
 // fGrad omits the 1/32 of the noise term, which exaggerates the noise relative to the
 // -(0,1,0) plane term; this is the exact gradient of f, checked by finite differences.)
 class SineNoiseField final : public ImplicitField {
@@ -93,14 +93,14 @@ enum class Relief { fbm, ridged, warped, dunes };
 struct TerrainParams {
     Relief relief = Relief::fbm;
     Fractal fractal{};
-    float frequency = 0.01f;  // the seed samples noise(p.xz * 0.01)
+    float frequency = 0.01f;  // noise(p.xz * 0.01): gentle swells ~100 units wide
     float amplitude = 1.0f;   // height of the relief's [0, 1] range above `base`
     float base = 0.0f;
     float warp = 1.0f;        // domain-warp amount (Relief::warped)
     Dunes dunes{};            // Relief::dunes (its wavelength is in frequency-scaled units)
 };
 
-// Heightfield terrain as an implicit field: f(p) = h(p.x, p.z) - p.y (seeds/003 item 2).
+// Heightfield terrain as an implicit field: f(p) = h(p.x, p.z) - p.y.
 // h lies within [base, base + amplitude] for fbm, ridged and warped relief (dunes may exceed
 // by the ripple amplitude), which gives a marcher its entry and exit planes.
 class TerrainField final : public ImplicitField {
@@ -136,7 +136,7 @@ private:
 };
 
 // 3-D noise volume: f(p) = base + amplitude * fbm3(p * frequency) - p.y, ground with
-// overhangs, arches and floating pieces (seeds/003 item 4 with value noise instead of sines).
+// overhangs, arches and floating pieces (3-D value noise instead of sines).
 struct VolumeParams {
     Fractal fractal{};
     float frequency = 1.0f;

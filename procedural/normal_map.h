@@ -1,5 +1,5 @@
-// Normal maps from height maps (seeds/004): a tangent-space normal per texel from central
-// differences of the heights, n = normalize(-s dh/du, -s dh/dv, 1), stored as RGB with
+// Normal maps from height maps (Blinn's bump mapping): a tangent-space normal per texel from
+// central differences of the heights, n = normalize(-s dh/du, -s dh/dv, 1), stored as RGB with
 // (0, 0, 1) -> (128, 128, 255), the flat blue of every normal map.
 //
 // Convention: u runs along +x (columns), v runs up the image (OpenGL / "Y+" normal maps, the

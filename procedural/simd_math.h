@@ -1,6 +1,6 @@
 // Scalar maths written so that GCC vectorises loops that call it (std::floor and std::sin stay
 // scalar library calls under GCC 12 without -ffast-math). Used by the noise kernels and by the
-// seed's sine-sum noise; each function is its own scalar reference and is tested against <cmath>.
+// 16-sine noise; each function is its own scalar reference and is tested against <cmath>.
 #pragma once
 #include <cstdint>
 

@@ -9,7 +9,7 @@ meshes of bench_raster; this script adds the two workloads it lacks.)
       corners, so diagonals pass through pixel centres: a fill-rule test), filling the screen
       in layers from back to front until N triangles.
   gen-workload.py spheres  --triangles N [--seed K] --out PREFIX
-      A field of parametric spheres (seeds/000: n = (cos 2pi u sin pi v, sin 2pi u sin pi v,
+      A field of parametric spheres (n = (cos 2pi u sin pi v, sin 2pi u sin pi v,
       cos pi v), p = c + R n; 16 x 32 grid = 1024 triangles each) with normals and uv, for
       --shade phong. N = 1048576 gives the "1M-triangle Phong" workload.
 

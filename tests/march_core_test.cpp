@@ -102,7 +102,7 @@ TEST(MarchCore, GeometricStepsSumToTheInterval) {
     MarchSettings settings;
     settings.strategy = StepStrategy::geometric;
     const MarchSettings::Schedule s = settings.schedule(Interval{2.0f, 582.7f});
-    // The seed: the first step is 1/580 of the distance for +2 % over 128 steps.
+    // The first step is 1/580 of the distance for +2 % over 128 steps.
     EXPECT_NEAR(s.first_step, 1.0, 2e-3);
     EXPECT_FLOAT_EQ(s.growth, 1.02f);
     double sum = 0.0, dt = s.first_step;
@@ -112,7 +112,7 @@ TEST(MarchCore, GeometricStepsSumToTheInterval) {
 
 TEST(MarchCore, UniformStepIsCappedByMaxStep) {
     MarchSettings settings;
-    settings.max_step = 0.05f;  // the seed's cap
+    settings.max_step = 0.05f;  // a cap
     EXPECT_FLOAT_EQ(settings.schedule(Interval{0.0f, 100.0f}).first_step, 0.05f);
     EXPECT_FLOAT_EQ(settings.schedule(Interval{0.0f, 1.28f}).first_step, 0.01f);
 }

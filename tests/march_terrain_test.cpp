@@ -1,4 +1,4 @@
-// Marching the procedural/ fields: the seed's 128-step geometric march with bisection against
+// Marching the procedural/ fields: a 128-step geometric march with bisection against
 // a dense reference march on the terrain, and analytic against central-difference normals at
 // marched hits on the terrain, the 16-sine noise and the noise volume.
 #include "raster/march/procedural_surfaces.h"
@@ -71,7 +71,7 @@ TEST(MarchTerrain, GeometricMarchWithBisectionMatchesADenseReference) {
     const Camera camera = terrain_camera();
     const RayGenerator rays(camera, 30, 20);
     MarchSettings fast;
-    fast.strategy = StepStrategy::geometric;  // the seed's 128 steps, +2 % each
+    fast.strategy = StepStrategy::geometric;  // 128 steps, +2 % each
     fast.tolerance = 1e-3f;
     MarchSettings dense;
     dense.steps = 8000;  // steps of ~0.05 over the ~400-unit slab interval
@@ -104,7 +104,7 @@ TEST(MarchTerrain, AnalyticAndCentralDifferenceNormalsAgreeOnTheSineNoise) {
     camera.eye = {0.0f, 1.3f, 3.0f};
     camera.lookat = {0.5f, 0.4f, 0.0f};
     camera.aspect = 1.5f;
-    // The seed's h = 0.05 blurs these short waves; a small step tests the gradient itself.
+    // The usual h = 0.05 blurs these short waves; a small step tests the gradient itself.
     expect_normals_agree(sine_noise_surface(noise), camera, 1e-3f, 2e-2f, 300);
 }
 

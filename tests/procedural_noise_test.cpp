@@ -1,6 +1,6 @@
 // Noise and implicit fields: analytic gradients agree with central differences, ranges hold,
-// periodic lattices tile, batch forms agree with single-point calls, and the seed's sine-sum
-// noise matches its formula evaluated literally (seeds/003 item 4).
+// periodic lattices tile, batch forms agree with single-point calls, and the 16-sine
+// noise matches its formula evaluated literally.
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -243,10 +243,10 @@ TEST(ProceduralNoise, BatchesMatchSinglePoints) {
     }
 }
 
-TEST(ProceduralField, SineNoiseMatchesTheSeedFormula) {
+TEST(ProceduralField, SineNoiseMatchesItsFormula) {
     const tp::SineNoiseField field;
     for (glm::vec3 r : points(300, 5)) {
-        // The seed's GLSL, literally, in double precision.
+        // The GLSL original, literally, in double precision.
         double s[3] = {7502, 22777, 4767}, w = 0;
         for (int i = 0; i < 16; ++i) {
             w += std::sin(((s[0] - 32768) * r.x * 40 + (s[1] - 32768) * r.y * 40 +

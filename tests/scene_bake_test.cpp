@@ -1,4 +1,4 @@
-// Transforms (the seed's S * R * T and its inverse) and baking objects into one world mesh.
+// Transforms (S * R * T and its inverse) and baking objects into one world mesh.
 #include <gtest/gtest.h>
 
 #include <glm/gtc/constants.hpp>
@@ -11,7 +11,7 @@
 
 using namespace tessera;
 
-TEST(SceneTransform, SeedOrderScaleRotateTranslateAndInverse) {
+TEST(SceneTransform, OrderScaleRotateTranslateAndInverse) {
     scene::Transform t;
     t.scale = {2.0f, 1.0f, 1.0f};
     t.axis = {0, 0, 1};

@@ -54,7 +54,7 @@ TEST(SceneFile, EveryShippedSceneParsesWithoutWarnings) {
     }
 }
 
-TEST(SceneFile, SnakesSceneHasTheHomeworkIngredients) {
+TEST(SceneFile, SnakesSceneHasItsIngredients) {
     std::vector<std::string> warnings;
     const scene_file::SceneSpec s = scene_file::load_scene_file(kScenes / "snakes.json", warnings);
     int snakes = 0, grounds = 0;

@@ -61,7 +61,7 @@ TEST(SceneGeometry, SurfaceNormalsMatchFiniteDifferences) {
     expect_surface_consistent(geometry::flag_surface(3.0f, 2.0f, 0.2f, 2.0f, 0.7f), "flag");
 }
 
-TEST(SceneGeometry, SphereNormalIsTheSeedsClosedForm) {
+TEST(SceneGeometry, SphereNormalIsTheClosedForm) {
     const auto r = geometry::sphere_surface({0, 0, 0}, 2.0f);
     const float u = 0.3f, v = 0.4f, pi = glm::pi<float>();
     const glm::vec3 seed(std::cos(2 * pi * u) * std::sin(pi * v), std::sin(2 * pi * u) * std::sin(pi * v),
@@ -153,7 +153,7 @@ TEST(SceneGeometry, BoxFacesPointOutwardWithFullUvSquares) {
     expect_winding_follows_normals(m, "box");
     for (size_t i = 0; i < m.vertex_count(); ++i) {
         EXPECT_GT(glm::dot(m.positions[i], m.normals[i]), 0.0f);  // outward
-        // uv: u grows along the tangent, so seeds/004 frames from positions and uv agree.
+        // uv: u grows along the tangent, so tangent frames from positions and uv agree.
         const size_t face = i / 4 * 4;
         const glm::vec3 along_u = m.positions[face + 1] - m.positions[face];
         EXPECT_GT(glm::dot(along_u, glm::vec3(m.tangents[i])), 0.0f);

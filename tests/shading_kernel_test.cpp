@@ -47,7 +47,7 @@ glm::vec4 checker_texel(glm::vec2 uv, int cells) {
 
 }  // namespace
 
-TEST(ShadingTangentFrame, SeedFormulaAgainstHandComputedFrames) {
+TEST(ShadingTangentFrame, FormulaAgainstHandComputedFrames) {
     // Positions in the xz plane, s along +x, t along -z: S = +x, T = -z (and S x T = +y = N).
     const V p[3] = {v3({0, 0, 0}), v3({2, 0, 0}), v3({0, 0, -2})};
     const float s[3] = {0, 1, 0}, t[3] = {0, 0, 1};
@@ -64,7 +64,7 @@ TEST(ShadingTangentFrame, SeedFormulaAgainstHandComputedFrames) {
     const float sm[3] = {0, -1, 0};
     const auto h = shade::tangent_frame<float>(p, sm, t, v3({0, 1, 0}));
     EXPECT_LT(glm::length(g3(h.s) - glm::vec3(-1, 0, 0)), 1e-6f);
-    // A skewed layout: T is the in-plane direction of constant s, by the seed's formula
+    // A skewed layout: T is the in-plane direction of constant s, by the formula
     // tgT = |dS2 * Vec1 - dS1 * Vec2| checked by hand: Vec1 = p3 - p2 = (-2, 0, -2),
     // Vec2 = p1 - p2 = (-2, 0, 0), dS1 = 0.5 - 1 = -0.5, dS2 = 0 - 1 = -1:
     // -1 * (-2, 0, -2) + 0.5 * (-2, 0, 0) = (1, 0, 2) -> (1, 0, 2)/sqrt(5), pointing to +t.
@@ -249,7 +249,7 @@ TEST(ShadingTransparency, BlendingFollowsSubmissionOrder) {
     EXPECT_LT(glm::length(f.at(12, 14) - expected), 1e-5f);
     EXPECT_NEAR(f.at(12, 14).r, 0.25f, 1e-6f);
     EXPECT_NEAR(f.at(12, 14).b, 0.5f, 1e-6f);
-    // Swapping the submission order swaps the weights: order matters, as the seed warns.
+    // Swapping the submission order swaps the weights: order matters.
     std::swap(scene.objects[0], scene.objects[1]);
     const Frame g = test::render_scene(scene, 32, 32);
     EXPECT_NEAR(g.at(12, 14).r, 0.5f, 1e-6f);

@@ -23,7 +23,7 @@ inline scene::Scene base_scene(scene::Material material) {
     s.materials = {material};
     s.objects = {scene::Object{"sphere", std::make_shared<const Mesh>(geometry::tessellate(geometry::sphere_surface({0, 0, 0}, 1.0f), 20, 10)),
                         0, {}, {}}};
-    // The seed's sphere has its poles on z; turn them to y so the pole row is not head-on.
+    // The parametric sphere has its poles on z; turn them to y so the pole row is not head-on.
     s.objects[0].transform.axis = {1, 0, 0};
     s.objects[0].transform.angle = -glm::half_pi<float>();
     return s;

@@ -27,7 +27,7 @@ public:
     float window_depth(const glm::vec3& world) const;
 
     // The window depth of the plane through a, b, c as a function of the window position:
-    // the rasterizer's depth plane Z(X, Y) = aX + bY + c (seeds/000 item 5), which a plane
+    // the rasterizer's depth plane Z(X, Y) = aX + bY + c, which a plane
     // keeps under any projective map. Evaluating it at a pixel centre gives the depth of the
     // ray's hit to double precision, where the hit distance Embree returns loses digits on
     // triangles seen nearly edge-on.

@@ -1,4 +1,4 @@
-// The extruded surface of the "writhing snakes" homework (seeds/000): an elliptical profile
+// The extruded surface of the writhing snakes: an elliptical profile
 // swept along a spine curve C(s),
 //     r(s, v) = C(s) + a(s) cos(theta) N(s) + b(s) sin(theta) B(s),   theta = -2 pi v,
 // where (T, N, B) is a rotation-minimising frame (no twist as the spine bends; computed by the

@@ -54,7 +54,7 @@ Mesh tessellate(const SurfaceFunction& surface, int n, int m) {
     });
 
     // Winding: each quad's two triangles are made counter-clockwise as seen from the side the
-    // analytic normals point to. The seed's order (i,j) (i+1,j) (i,j+1) is counter-clockwise
+    // analytic normals point to. The order (i,j) (i+1,j) (i,j+1) is counter-clockwise
     // when n ~ dr/du x dr/dv (the flag) but not for its sphere, whose closed-form normal is
     // -dr/du x dr/dv; deciding per quad from the diagonals' cross product (non-zero even
     // where an edge collapses at a pole) covers every surface.

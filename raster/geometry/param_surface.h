@@ -1,11 +1,11 @@
-// Tessellation of parametric surfaces (seeds/000, "Tesszelláció"): r(u, v) sampled on an
+// Tessellation of parametric surfaces: r(u, v) sampled on an
 // N x M grid of the unit square, neighbouring samples joined into 2NM triangles, with the
 // analytic normal n = dr/du x dr/dv, uv = (u, v) and the tangent dr/du.
 //
-// The grid keeps (N+1) x (M+1) shared vertices (the seed emits six unshared vertices per quad;
-// sharing is the same surface with a third of the vertex work). The seam at u = 1 and v = 1
-// is duplicated so the texture coordinates stay continuous per triangle. Each quad (i, j)
-// gives the seed's triangles (i,j) (i+1,j) (i,j+1) and (i+1,j) (i+1,j+1) (i,j+1), each made
+// The grid keeps (N+1) x (M+1) shared vertices (a naive version emits six unshared vertices per
+// quad; sharing is the same surface with a third of the vertex work). The seam at u = 1 and
+// v = 1 is duplicated so the texture coordinates stay continuous per triangle. Each quad (i, j)
+// gives the triangles (i,j) (i+1,j) (i,j+1) and (i+1,j) (i+1,j+1) (i,j+1), each made
 // counter-clockwise as seen from the side the normals point to.
 #pragma once
 #include <glm/glm.hpp>

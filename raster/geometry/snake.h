@@ -1,9 +1,9 @@
-// The writhing snakes of the seeds/000 homework, as geometry over time: the spine's control
-// points (SnakeShape: riding a closed path, each swaying on its own period), the body as the
-// elliptical-profile extrusion along the Catmull-Rom/Bezier spine through them
+// The writhing snakes (a classic graphics-course exercise), as geometry over time: the spine's
+// control points (SnakeShape: riding a closed path, each swaying on its own period), the body
+// as the elliptical-profile extrusion along the Catmull-Rom/Bezier spine through them
 // (geometry/extrusion.h), and the pose of the ellipsoid head and eyes at the spine's front.
-// Every function is a pure function of the spec and the time, so objects animated in
-// parallel (Scene::animate) agree on where the snake is without sharing state.
+// Every function is a pure function of the spec and the time, so objects animated in parallel
+// (Scene::animate) agree on where the snake is without sharing state.
 #pragma once
 #include <glm/glm.hpp>
 #include <glm/gtc/quaternion.hpp>
@@ -16,7 +16,7 @@
 namespace tessera::geometry {
 
 // The ground under the snakes: world height at (x, z).
-// A snake of the seeds/000 homework. Its spine's control points ride a closed path (an
+// A snake. Its spine's control points ride a closed path (an
 // ellipse around `centre`, turned by `path_angle`) at `speed` rad/s, spaced along it so the
 // body spans `length`, and each sways sideways on its own closed curve: a sine of period
 // wiggle_period * (1 + period_spread * i) and phase -wave_phase * i (a wave running from head

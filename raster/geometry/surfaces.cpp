@@ -25,7 +25,7 @@ SurfaceFunction ellipsoid_surface(glm::vec3 center, glm::vec3 radii) {
     return [center, radii](float u, float v) {
         const float cu = std::cos(kTwoPi * u), su = std::sin(kTwoPi * u);
         const float cv = std::cos(kPi * v), sv = std::sin(kPi * v);
-        const glm::vec3 n(cu * sv, su * sv, cv);  // the seed's unit-sphere normal
+        const glm::vec3 n(cu * sv, su * sv, cv);  // the unit-sphere normal
         SurfacePoint p;
         p.position = center + radii * n;
         p.dpdu = radii * glm::vec3(-kTwoPi * su * sv, kTwoPi * cu * sv, 0.0f);

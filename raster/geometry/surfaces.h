@@ -1,6 +1,6 @@
-// The parametric surfaces of seeds/000 as SurfaceFunctions for tessellate(): each gives the
+// The parametric surfaces as SurfaceFunctions for tessellate(): each gives the
 // position, the analytic partial derivatives and the analytic normal (dr/du x dr/dv, or the
-// seed's closed form where the cross product vanishes at a pole).
+// closed form where the cross product vanishes at a pole).
 #pragma once
 #include <glm/glm.hpp>
 
@@ -21,7 +21,7 @@ SurfaceFunction ellipsoid_surface(glm::vec3 center, glm::vec3 radii);
 // p = ((R + r cos 2pi v) cos 2pi u, (R + r cos 2pi v) sin 2pi u, r sin 2pi v).
 SurfaceFunction torus_surface(float major, float minor);
 
-// Seed's waving flag: p = (u W, v H, sin(K pi u + phase) D),
+// The waving flag: p = (u W, v H, sin(K pi u + phase) D),
 // n = (-K pi cos(K pi u + phase) D, 0, W) (the cross product divided by H).
 SurfaceFunction flag_surface(float width, float height, float depth, float waves, float phase);
 

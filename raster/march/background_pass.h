@@ -1,4 +1,4 @@
-// The background as a compute pass (seeds/003: a full-screen pass that looks up the
+// The background as a compute pass (a full-screen pass that looks up the
 // environment with the per-pixel ray direction, drawn "behind everything"): every pixel of the
 // tile whose depth is still the cleared 1.0 gets the background's radiance along its ray. The
 // opaque shading pass already paints empty pixels this way; this pass is for frames that have

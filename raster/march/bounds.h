@@ -1,6 +1,6 @@
 // Bounding volumes that give the marcher its [t0, t1] per ray, so no step is spent where the
 // surface cannot be:
-// - a slab between two horizontal planes (seeds/003: the terrain lies between y = 0 and
+// - a slab between two horizontal planes (the terrain lies between y = 0 and
 //   y = 1; "t1 = (1 - eye.y) / d.y, t2 = (0 - eye.y) / d.y, tstar = max(min(t1, t2), 0),
 //   tend = max(max(t1, t2), 0)"), capped at a far distance because a ray parallel to the
 //   planes and inside the slab never leaves it;

@@ -1,12 +1,12 @@
-// Participating medium along the eye ray (seeds/003, "fog"): radiance changes by absorption /
+// Participating medium along the eye ray: radiance changes by absorption /
 // out-scattering and in-scattering, dL/ds = -sigma(s) L + sigma(s) C, whose solution from the
 // surface at distance D to the eye is
 //     L_eye = T L_surface + (1 - T) C,   T = exp(-tau),   tau = int_0^D sigma(o + t d) dt.
-// C is the fog's colour (the seed's source term divided by its attenuation); C = 0 is the
-// seed's "black fog". sigma and C are RGB, so the fog can be coloured.
+// C is the fog's colour (the source term divided by its attenuation); C = 0 is the
+// "black fog". sigma and C are RGB, so the fog can be coloured.
 //
 // Density: sigma(p) = density * exp(-falloff (p.y - base_height)): falloff 0 is the constant
-// fog, falloff > 0 the seed's "denser low, thinner high" exponential height fog. Along
+// fog, falloff > 0 a "denser low, thinner high" exponential height fog. Along
 // y(t) = o_y + t d_y the integral has the closed form
 //     tau = density e^{-b (o_y - y0)} D (1 - e^{-x}) / x,   x = b d_y D,
 // and (1 - e^{-x}) / x -> 1 for a horizontal ray (x -> 0), where the division is replaced by

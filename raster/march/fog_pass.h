@@ -1,4 +1,4 @@
-// Fog as the last per-pixel compute pass of a tile (seeds/003: "evaluate the formula at the end
+// Fog as the last per-pixel compute pass of a tile ("evaluate the formula at the end
 // of the pass; the background is infinitely far"): for every pixel the distance to what it
 // shows is rebuilt from the depth buffer (rasterized triangles and marched surfaces alike;
 // infinity where the depth is the cleared 1.0), and the colour becomes

@@ -1,4 +1,4 @@
-// A 3-D noise surface from procedural/'s gradient (Perlin-style) noise, the second of the seed's
+// A 3-D noise surface from procedural/'s gradient (Perlin-style) noise, the second of the classic
 // "3-D noise instead of a heightfield" surfaces (overhangs, bridges):
 //     f(p) = base + amplitude * n(frequency * p) - p.y,
 //     grad f = amplitude * frequency * grad n - (0, 1, 0),

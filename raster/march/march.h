@@ -1,4 +1,4 @@
-// The ray marcher (seeds/003): sample f along the ray from t0 with the step schedule of
+// The ray marcher: sample f along the ray from t0 with the step schedule of
 // MarchSettings, stop at the first sample inside the solid (f >= 0), then refine the last
 // bracket by bisection. Generic over any MarchField.
 //

@@ -1,7 +1,7 @@
 // What the marcher needs from a surface (MarchField): an implicit function with a value and a
 // gradient. (procedural::ImplicitField is one family of such fields, with a virtual interface.)
 //
-// Sign convention (seeds/003): f > 0 inside the solid, f < 0 outside, the surface is f = 0.
+// Sign convention: f > 0 inside the solid, f < 0 outside, the surface is f = 0.
 // The terrain f(p) = h(p.xz) - p.y, the 3-D noise w/32 + 0.5 - p.y and the metaball sum
 // sum K(|p - c|) - T all read this way, so a ray that starts in the air meets the surface at
 // its first sign change from - to +, and the outward normal is -grad f / |grad f|.

@@ -35,7 +35,7 @@ struct MarchScene::Fields {
 
 namespace {
 
-// The seed's terrain is noise(p.xz * 0.01) - p.y between y = 0 and 1: gentle swells 100 units
+// The classic terrain is noise(p.xz * 0.01) - p.y between y = 0 and 1: gentle swells 100 units
 // wide. The scene scales it up so the relief reads at a glance.
 procedural::TerrainParams terrain_params() {
     procedural::TerrainParams p;

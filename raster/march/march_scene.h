@@ -1,4 +1,4 @@
-// A ready-made ray-marched scene for one frame (seeds/003's labs and homework): the terrain,
+// A ready-made ray-marched scene for one frame (terrain, noise surfaces, metaballs): the terrain,
 // the 16-sine noise surface, the value-noise volume, the gradient-noise surface or animated
 // metaballs, with the
 // background and optional fog, as the tile passes the rasterizer runs. The `tessera march`
@@ -33,7 +33,7 @@ struct MarchSceneSettings {
     MarchSceneKind kind = MarchSceneKind::metaballs;
     float time = 0.0f;  // seconds: moves the metaballs and the terrain camera
     MetaballKernel kernel = MetaballKernel::wyvill;
-    int balls = 5;  // at least 3 (the homework's minimum)
+    int balls = 5;  // at least 3 (a blob needs company)
     MarchSettings march{};
     NormalSettings normals{};
     SurfaceMaterial material{};

@@ -1,15 +1,15 @@
-// How a ray is stepped through its bounding interval (seeds/003, "ray marching"):
+// How a ray is stepped through its bounding interval:
 //
-// - uniform: `steps` equal steps of min((t1 - t0) / steps, max_step). The seed uses 128 steps
+// - uniform: `steps` equal steps of min((t1 - t0) / steps, max_step). 128 steps
 //   and max_step = 0.05 for its unit-thick terrain slab; max_step defaults to no cap here so
 //   the march always reaches t1.
-// - geometric: each step is `growth` times the previous one (the seed's +2 %), the first one
+// - geometric: each step is `growth` times the previous one (+2 % is usual), the first one
 //   chosen so that the steps sum exactly to t1 - t0: dt0 = (t1 - t0) (g - 1) / (g^n - 1). For
-//   g = 1.02 and n = 128 that is (t1 - t0) / 580.7, the seed's "1/580 of the distance". Near
+//   g = 1.02 and n = 128 that is (t1 - t0) / 580.7, "1/580 of the distance". Near
 //   samples are dense where the screen footprint is small, far ones sparse.
 //
 // After the first sample with f >= 0, bisection refines the bracket [t_outside, t_inside]
-// (the seed's "step back half a step, halve, step forward or back by the sign") until it is
+// ("step back half a step, halve, step forward or back by the sign") until it is
 // no wider than `tolerance`; the midpoint is returned, within tolerance / 2 of a simple root.
 #pragma once
 #include <limits>

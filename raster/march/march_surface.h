@@ -2,7 +2,7 @@
 // [t0, t1] and returns the field to march for that packet (possibly a culled copy kept in the
 // caller's scratch, so nothing is shared between threads); validate() throws
 // std::invalid_argument for bounds that cannot hold a surface:
-// - SlabSurface: a field that lies between two horizontal planes (the seed's terrain and its
+// - SlabSurface: a field that lies between two horizontal planes (the terrain and its
 //   3-D noise);
 // - MetaballSurface: metaballs, culled per packet to the balls the packet's rays cross.
 #pragma once

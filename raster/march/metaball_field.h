@@ -1,6 +1,6 @@
-// Metaballs (seeds/003 homework): f(p) = sum_i w_i K(|p - c_i|^2 / R_i^2) - T, positive inside
-// the blob, with the analytic gradient sum_i w_i dK/ds 2 (p - c_i) / R_i^2 (the seed asks for
-// it "analytically, not by differences").
+// Metaballs (Blinn 1982): f(p) = sum_i w_i K(|p - c_i|^2 / R_i^2) - T, positive inside
+// the blob, with the analytic gradient sum_i w_i dK/ds 2 (p - c_i) / R_i^2 (analytically, not
+// by differences).
 //
 // Every kernel here has finite support R_i (metaball_kernel.h), so a ball contributes nothing
 // to a ray that misses its support sphere. cull() uses that: for a packet of rays it keeps

@@ -1,4 +1,4 @@
-// Radial metaball kernels (seeds/003 homework: Blinn, Perlin, Wyvill), each written in
+// Radial metaball kernels (Blinn, Perlin, Wyvill), each written in
 // s = r^2 / R^2 with R the support radius, so the sum needs no square root where the kernel
 // does not, and the gradient is  grad K = dK/ds * 2 (p - c) / R^2  for every kernel.
 //

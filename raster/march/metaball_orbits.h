@@ -1,4 +1,4 @@
-// Animated metaball centres (seeds/003 homework: "at least 3 balls, animate the centres"):
+// Animated metaball centres (at least 3 balls, animated centres):
 // ball i moves on a Lissajous orbit around the origin with its own periods and phases, so
 // the balls drift into and out of each other and the blend between them is visible.
 #pragma once

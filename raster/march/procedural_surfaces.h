@@ -1,8 +1,8 @@
 // The procedural/ fields as marchable surfaces, each with the two planes that enclose it
-// (seeds/003: "entered and left between planes y = 0 and y = 1"):
+// (entered and left between planes y = 0 and y = 1):
 // - terrain f = h(p.xz) - p.y: h lies in [base, base + amplitude] (dunes add their ripple
 //   amplitude on top);
-// - the seed's 16-sine noise f = w/32 + 0.5 - p.y with |w| <= 16: the surface lies in
+// - the 16-sine noise f = w/32 + 0.5 - p.y with |w| <= 16: the surface lies in
 //   [0, 1] (a hair more for the approximated sines);
 // - the value-noise volume f = base + amplitude * fbm - p.y with |fbm| <= 1;
 // - the gradient-noise surface f = base + amplitude * n - p.y, |n| "about 1": 10 % margin.

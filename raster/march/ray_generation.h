@@ -1,6 +1,6 @@
-// Primary rays per pixel from the inverse view-projection (seeds/003, "rayDirMatrix"): the
-// seed draws a full-screen quad and lets the vertex shader turn normalised device coordinates
-// into a world-space direction with (E V P)^-1, where E translates by the eye position. The
+// Primary rays per pixel from the inverse view-projection ("rayDirMatrix"): the GPU version
+// draws a full-screen quad and lets the vertex shader turn normalised device coordinates into a
+// world-space direction with (E V P)^-1, where E translates by the eye position. The
 // translation makes the matrix map NDC straight to eye-relative directions, so no per-pixel
 // subtraction of the eye is needed; since a direction is normalised anyway, the homogeneous
 // divide is skipped too (w > 0 for every point in front of the camera).

@@ -1,8 +1,8 @@
-// Surface normals of an implicit field at a hit (seeds/003, "normals"): the outward normal is
+// Surface normals of an implicit field at a hit: the outward normal is
 // -grad f / |grad f| (f > 0 inside), with grad f either the field's analytic gradient or the
-// seed's central differences
+// central differences
 //   grad f ~ (f(p + h x) - f(p - h x), f(p + h y) - f(p - h y), f(p + h z) - f(p - h z)) / 2h
-// with h = 0.05 in the seed. Differences cost six field evaluations and blur detail smaller
+// with h = 0.05 usually. Differences cost six field evaluations and blur detail smaller
 // than h; the analytic gradient costs one gradient evaluation and is exact.
 #pragma once
 #include <glm/glm.hpp>
@@ -19,7 +19,7 @@ enum class NormalMethod { analytic, central_differences };
 
 struct NormalSettings {
     NormalMethod method = NormalMethod::analytic;
-    float h = 0.05f;  // central-difference half step (the seed's 0.05)
+    float h = 0.05f;  // central-difference half step (0.05 is the usual choice)
 
     void validate() const {
         if (!(h > 0.0f) || !std::isfinite(h))

@@ -1,4 +1,4 @@
-// The ray-marched surface as a per-pixel compute pass in the tile stage (seeds/003: the seed
+// The ray-marched surface as a per-pixel compute pass in the tile stage (the GPU original
 // draws the marched terrain as a full-screen pass; here it runs per tile after rasterization).
 //
 // For each run of kMarchLanes pixels in a tile row: generate the rays, let the surface bound

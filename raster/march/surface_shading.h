@@ -1,5 +1,5 @@
-// Shading of a marched hit (seeds/003 homework: "Phong BRDF or environment mapping"): the
-// scene's Blinn-Phong of seeds/000 over its lights (shade::blinn_phong, the same formula the
+// Shading of a marched hit (Phong BRDF or environment mapping): the
+// scene's Blinn-Phong over its lights (shade::blinn_phong, the same formula the
 // rasterized triangles get), plus an environment-mapped mirror term: `reflectivity` of the
 // radiance the background (sky or cube map) sends along reflect(d, N).
 #pragma once

@@ -8,7 +8,7 @@
 // sum(l_i * h_i) proportional to p, i.e. l proportional to M^-1 p (M = [h0 h1 h2]). Row i of
 // the adjugate of M is h_j x h_k, so r_i = (h_j x h_k) . p and l_i = r_i / (r_0 + r_1 + r_2):
 // the l_i are the barycentrics of the surface point (interpolate any attribute with them; the
-// seed's "interpolate u/h, v/h, 1/h linearly, divide" in closed form).
+// textbook "interpolate u/h, v/h, 1/h linearly, divide" in closed form).
 #pragma once
 #include <glm/glm.hpp>
 

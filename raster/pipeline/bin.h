@@ -1,7 +1,7 @@
-// Binning (DESIGN.md "One frame", step 3): each chunk of triangles copies every triangle
-// setup into the bins of the screen tiles its box touches. A chunk owns its bins, so no locks
-// are needed, and the tile stage reads chunk 0's bin, then chunk 1's, ... which is submission
-// order whatever the number of threads.
+// Binning (README "One frame, as data flows", step 3): each chunk of triangles copies every
+// triangle setup into the bins of the screen tiles its box touches. A chunk owns its bins, so
+// no locks are needed, and the tile stage reads chunk 0's bin, then chunk 1's, ... which is
+// submission order whatever the number of threads.
 //
 // Bins hold the setups themselves, not indices: the tile stage then streams each bin
 // sequentially instead of gathering records scattered over the whole frame's setups (one cache

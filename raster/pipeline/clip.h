@@ -1,4 +1,4 @@
-// Clipping in homogeneous coordinates (seeds/000 item 3; Sutherland-Hodgman): a triangle is cut
+// Clipping in homogeneous coordinates (Sutherland-Hodgman): a triangle is cut
 // against the near (z >= -w) and far (z <= w) planes and, only where a vertex leaves the guard
 // band, against x = +-guard_x*w and y = +-guard_y*w (viewport.h). Cutting at the near plane
 // also removes everything at or behind the eye (w <= 0), so triangles crossing w = 0 keep their

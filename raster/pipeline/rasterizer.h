@@ -15,11 +15,11 @@
 // perspective-correct barycentrics (barycentrics.h: triangle_barycentrics(mesh, *ctx.clip, id,
 // *ctx.viewport).at(x + 0.5f, y + 0.5f, l0, l1, l2), in float or simd::vfloat lanes).
 //
-// Pipeline (DESIGN.md "One frame"): vertex stage (SIMD, TBB over vertices) -> per chunk of
-// triangles: clip (near/far, guard band), cull, setup, bin into per-chunk tile bins (TBB over
-// chunks, no locks) -> per tile (TBB over tiles): clear, rasterize the bins in submission
-// order with depth LESS into cache-resident tile buffers, write visibility, run the passes.
-// The result is identical for any thread count and any tile size.
+// Pipeline (README "One frame, as data flows"): vertex stage (SIMD, TBB over vertices) -> per
+// chunk of triangles: clip (near/far, guard band), cull, setup, bin into per-chunk tile bins
+// (TBB over chunks, no locks) -> per tile (TBB over tiles): clear, rasterize the bins in
+// submission order with depth LESS into cache-resident tile buffers, write visibility, run the
+// passes. The result is identical for any thread count and any tile size.
 #pragma once
 #include <glm/glm.hpp>
 

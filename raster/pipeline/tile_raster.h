@@ -1,8 +1,8 @@
-// The tile stage's inner loop: one triangle setup against one screen tile (DESIGN.md "One
-// frame", step 4). Traversal descends tile -> 16x16 block -> SIMD stamp (simd.h: 4x4 pixels
-// for 16 lanes) with trivial reject / accept on the edge functions, steps the edge functions
-// incrementally in int32 lanes (ranges in fixed_point.h) and evaluates the depth plane per
-// stamp. Small triangles skip the block level (llvmpipe-style size classes).
+// The tile stage's inner loop: one triangle setup against one screen tile (README "One frame,
+// as data flows", step 4). Traversal descends tile -> 16x16 block -> SIMD stamp (simd.h: 4x4
+// pixels for 16 lanes) with trivial reject / accept on the edge functions, steps the edge
+// functions incrementally in int32 lanes (ranges in fixed_point.h) and evaluates the depth
+// plane per stamp. Small triangles skip the block level (llvmpipe-style size classes).
 #pragma once
 #include <cstdint>
 

@@ -1,4 +1,4 @@
-// Triangle setup (seeds/000 item 5, D3D11.3 §3.4): from three snapped window vertices to the
+// Triangle setup (D3D11.3 §3.4): from three snapped window vertices to the
 // integer edge functions, the bounding box and the depth plane Z = aX + bY + c that traversal
 // steps across pixels. Integer ranges are documented in fixed_point.h.
 #pragma once

@@ -31,7 +31,7 @@ struct CameraSpec {
     float orbit = 0.0f;          // rad/s: the eye circles the lookat point about +y
 };
 
-// Ray-marched compute passes (seeds/003), run per tile after rasterization in list order.
+// Ray-marched compute passes, run per tile after rasterization in list order.
 struct PassSpec {
     enum class Kind { terrain, metaballs, fog };
     Kind kind = Kind::terrain;

@@ -1,4 +1,4 @@
-// How a frame too large for one pass is cut (DESIGN.md "Frames beyond 8K"): bands of whole
+// How a frame too large for one pass is cut (README "Frames beyond one pass"): bands of whole
 // rows, top to bottom, each rendered as regions side by side (camera.h region()). A band is
 // the unit that is streamed to the file and handed to an MPI rank; a region is the unit the
 // rasterizer renders, so it stays within the fixed-point viewport limit (fixed_point.h).

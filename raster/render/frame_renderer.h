@@ -1,16 +1,16 @@
-// One animation frame of an AnimatedScene, start to finish (DESIGN.md "One frame"): animate,
-// bake, visibility (the tile rasterizer, or Embree primary rays), then per tile while it is
-// hot: shade the visible triangles, darken what the lights cannot reach (shadows), blend the
-// transparent triangles in submission order, and run the scene's compute passes (ray-marched
-// terrain and metaballs, fog). The same tile function serves both renderers, so they differ
-// only in how visibility was found.
+// One animation frame of an AnimatedScene, start to finish (README "One frame, as data flows"):
+// animate, bake, visibility (the tile rasterizer, or Embree primary rays), then per tile while
+// it is hot: shade the visible triangles, darken what the lights cannot reach (shadows), blend
+// the transparent triangles in submission order, and run the scene's compute passes
+// (ray-marched terrain and metaballs, fog). The same tile function serves both renderers, so
+// they differ only in how visibility was found.
 //
 // Shadows: each tile's visible points (shadow/surface_points.h) are tested against every light
 // with Embree occlusion rays (--shadows rays, embree/shadow_rays.h) or shadow maps rendered by
 // the rasterizer from each light (--shadows map, shadow/shadow_map.h); a directional light is
 // treated as a point light 10^4 units away along its direction. A point that faces a
 // light but cannot see it is re-shaded with that light's emission Le set to zero, which is
-// exactly the seed's formula with the light's direct term removed (ambient ka La stays), so
+// exactly the Blinn-Phong formula with the light's direct term removed (ambient ka La stays), so
 // shadowed and lit pixels come from the same shading kernel. Points facing away from a light
 // keep the kernel's smooth N.L falloff (no stair-stepped terminator on coarse meshes).
 //

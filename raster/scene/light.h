@@ -1,7 +1,7 @@
-// Lights as in seeds/000: a homogeneous world position wLiPos (w = 1: a point light at xyz,
+// Lights: a homogeneous world position wLiPos (w = 1: a point light at xyz,
 // w = 0: a directional light shining from direction xyz), ambient radiance La and emitted
 // radiance Le. The light vector at a surface point p is wLiPos.xyz - p * wLiPos.w, which covers
-// both kinds with one formula (the seed's vertex shader).
+// both kinds with one formula (as a vertex shader would).
 #pragma once
 #include <glm/glm.hpp>
 

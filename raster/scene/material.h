@@ -1,5 +1,5 @@
-// Materials: which shading model a surface uses (seeds/000: flat, Gouraud, Phong, NPR toon)
-// and the parameters of the seed's Blinn-Phong formula
+// Materials: which shading model a surface uses (flat, Gouraud, Phong, NPR toon)
+// and the parameters of the Blinn-Phong formula
 //     L = ka*La + (kd*cos(theta) + ks*cos(delta)^shine) * Le,
 // plus optional textures (a diffuse colour texture modulating kd, a tangent-space normal map
 // sampled in the surface's tangent frame), an opacity for alpha blending and an alpha cutoff for alpha testing.
@@ -18,9 +18,9 @@ namespace tessera::scene {
 
 enum class ShadingModel : uint8_t {
     flat,     // one colour per triangle: the face normal, lit at the triangle's centroid
-    gouraud,  // Blinn-Phong per vertex, the colour interpolated (seed's per-vertex shader)
+    gouraud,  // Blinn-Phong per vertex, the colour interpolated (per-vertex shading)
     phong,    // Blinn-Phong per pixel with N, V, L interpolated and renormalised
-    toon,     // two diffuse levels, black silhouette (seed's NPR shader)
+    toon,     // two diffuse levels, black silhouette (NPR shading)
 };
 
 inline constexpr int32_t kNoTexture = -1;
@@ -66,7 +66,7 @@ struct MaterialParameter {
 // Sets the named parameters on `material` (model first, whatever the order, so the checks
 // below see the final model). Bad values (wrong count, negative shine, opacity outside [0, 1],
 // unknown model name) throw std::invalid_argument. Unknown names and parameters that the
-// material's model does not use are not errors (seeds/003: "a warning, not an error"): one
+// material's model does not use are not errors (a warning, not an error): one
 // line per such parameter is returned for the caller to print.
 std::vector<std::string> set_material_parameters(Material& material,
                                                  std::span<const MaterialParameter> parameters);

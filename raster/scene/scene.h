@@ -1,8 +1,8 @@
-// The scene model of seeds/000 (Scene, Object, Material, Texture, Geometry, Camera, Light),
+// The scene model (Scene, Object, Material, Texture, Geometry, Camera, Light),
 // done the data-oriented way: objects refer to shared geometry and to materials by index, and
 // each frame is baked into ONE world-space Mesh plus a material id per triangle. Everything
 // downstream (the tile rasterizer, the Embree ray caster, shading) reads only that bake, so
-// the two renderers see identical work and objects never disturb one another (the seed's
+// the two renderers see identical work and objects never disturb one another (the classic
 // "render state passed by value").
 #pragma once
 #include <functional>
@@ -25,7 +25,7 @@ struct Object {
     std::shared_ptr<const Mesh> geometry;  // model space; shared between instances
     uint32_t material = 0;                 // index into Scene::materials
     Transform transform;
-    // The seed's Animate(): called with the scene time (seconds) before a frame is baked; may
+    // Animate(): called with the scene time (seconds) before a frame is baked; may
     // change the transform or replace the geometry (a waving flag, a writhing snake).
     std::function<void(Object&, float time)> animate;
 };

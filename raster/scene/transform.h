@@ -1,8 +1,8 @@
-// An object's placement, as in seeds/000: scale, then rotation by `angle` about `axis`, then
-// translation. The seed writes it for row vectors, M = S * R(angle, axis) * T, and its inverse
+// An object's placement: scale, then rotation by `angle` about `axis`, then
+// translation. Written for row vectors, M = S * R(angle, axis) * T, and its inverse
 // Minv = T(-pos) * R(-angle, axis) * S(1/scale); with GLM's column vectors the same transforms
-// are T * R * S and S^-1 * R^-1 * T^-1. Normals go through the inverse transpose (the seed's
-// `Minv * n`, a row vector times the transpose), so non-uniform scales keep them perpendicular.
+// are T * R * S and S^-1 * R^-1 * T^-1. Normals go through the inverse transpose
+// (`Minv * n`, a row vector times the transpose), so non-uniform scales keep them perpendicular.
 #pragma once
 #include <glm/glm.hpp>
 

@@ -3,7 +3,7 @@
 //
 // Diagnostics: a missing file, malformed JSON (with line and column) or a value of the wrong
 // type or range throws SceneFileError "FILE: /json/pointer: problem"; unknown keys and
-// material parameters the chosen shading model does not use are warnings (seeds/003: "a
+// material parameters the chosen shading model does not use are warnings ("a
 // warning, not an error"), returned as "FILE: /json/pointer: ..." lines.
 #pragma once
 #include <filesystem>

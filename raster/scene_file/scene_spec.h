@@ -40,7 +40,7 @@ struct TextureSpec {
     uint32_t seed = 1;
     float anisotropy = 0.0f;
     std::vector<procedural::ColorStop> ramp;  // empty: the default snake-skin ramp
-    // relief_normals: a tangent-space normal map of a procedural heightfield (seeds/004)
+    // relief_normals: a tangent-space normal map of a procedural heightfield (bump mapping)
     procedural::HeightfieldParams relief;
     float strength = 8.0f;
 };
@@ -80,7 +80,7 @@ struct ObjectSpec {
     float radius = 1.0f;
     glm::vec3 radii{1.0f};
     float major = 1.0f, minor = 0.3f;
-    // flag (seeds/000's waving flag: phase = wave_speed * time)
+    // flag (the waving flag: phase = wave_speed * time)
     glm::vec2 flag_size{2.0f, 1.2f};
     float flag_depth = 0.1f, flag_waves = 3.0f, wave_speed = 3.0f;
     // box: an axis-aligned box of `box_size` centred on the origin (geometry/box.h: one quad

@@ -36,7 +36,7 @@ FrameShading::FrameShading(const scene::BakedScene& baked, const scene::Scene& s
             throw std::invalid_argument("shading: a vertex refers to material " + std::to_string(m) +
                                         ", but the scene has " + std::to_string(scene_.materials.size()));
 
-    // Pixel rays: the inverse of the seed's V and P restricted to directions. A camera-space
+    // Pixel rays: the inverse of V and P restricted to directions. A camera-space
     // direction (x_ndc / P00, y_ndc / P11, -1) goes to world space through the rows u, v, w
     // of the view matrix. The NDC are the whole frame's: a camera window (camera.h) maps the
     // window's NDC affinely onto them, which folds into the three vectors.
@@ -70,7 +70,7 @@ FrameShading::FrameShading(const scene::BakedScene& baked, const scene::Scene& s
             if (!any_gouraud) continue;
             const scene::Material& m = scene_.materials[baked_.vertex_material[i]];
             if (m.model != scene::ShadingModel::gouraud) continue;
-            // The seed's per-vertex shader: Blinn-Phong with the vertex normal.
+            // The per-vertex (Gouraud) shader: Blinn-Phong with the vertex normal.
             using V = simd::V3<float>;
             const glm::vec3 pw = mesh.positions[i];
             const V p{pw.x, pw.y, pw.z};

@@ -5,7 +5,7 @@
 //
 // Per pixel it computes the perspective-correct barycentrics of the covering triangle at the
 // pixel centre from its clip-space corners (barycentrics.h: 2D homogeneous rasterization,
-// the seed's "interpolate u/h, v/h, 1/h, then divide" in closed form), and their screen-space
+// the textbook "interpolate u/h, v/h, 1/h, then divide" in closed form), and their screen-space
 // derivatives analytically from the same plane equations, which select the mip level.
 // Attributes are interpolated with b, then the material's model shades (lighting.h).
 //
@@ -27,7 +27,7 @@
 
 namespace tessera::shade {
 
-// The seed's RenderState: what every shader of the frame reads, passed by value.
+// RenderState: what every shader of the frame reads, passed by value.
 struct RenderState {
     Camera camera;
     int width = 0;   // pixels
@@ -80,11 +80,11 @@ private:
 // The opaque pass of a tile: visible pixels shaded, the others given the background.
 void shade_tile(const FrameShading& shading, const Tile& tile);
 
-// Alpha blending as in the seed (glBlendFunc(GL_SRC_ALPHA, GL_ONE_MINUS_SRC_ALPHA)) for the
-// colour, c = c_src * a_src + c_dst * (1 - a_src). Coverage composes as "over",
-// a = a_src + a_dst * (1 - a_src) (glBlendFuncSeparate's usual alpha factors), so a pixel
-// that was opaque stays opaque; the seed's a_src^2 + a_dst (1 - a_src) would leave frames
-// partly transparent wherever glass was drawn.
+// Alpha blending (glBlendFunc(GL_SRC_ALPHA, GL_ONE_MINUS_SRC_ALPHA)) for the colour, c = c_src
+// * a_src + c_dst * (1 - a_src). Coverage composes as "over", a = a_src + a_dst * (1 - a_src)
+// (glBlendFuncSeparate's usual alpha factors), so a pixel that was opaque stays opaque;
+// blending alpha like colour, a_src^2 + a_dst (1 - a_src) would leave frames partly transparent
+// wherever glass was drawn.
 inline glm::vec4 blend_over(glm::vec4 dst, glm::vec4 src) {
     return {glm::vec3(src) * src.a + glm::vec3(dst) * (1.0f - src.a), src.a + dst.a * (1.0f - src.a)};
 }

@@ -1,4 +1,4 @@
-// The illumination formulas of seeds/000, over one pixel (F = float) or kLanes pixels
+// The illumination formulas (Blinn-Phong, toon), over one pixel (F = float) or kLanes pixels
 // (F = simd::vfloat). Vectors are world-space; N, V, L are unit length.
 #pragma once
 #include <glm/glm.hpp>
@@ -18,14 +18,14 @@ V3<F> broadcast(glm::vec3 v) {
     return {F(v.x), F(v.y), F(v.z)};
 }
 
-// Unit vector from surface point p towards the light: the seed's wLiPos.xyz - p * wLiPos.w.
+// Unit vector from surface point p towards the light: wLiPos.xyz - p * wLiPos.w.
 template <class F>
 V3<F> light_direction(const scene::Light& light, V3<F> p, V3<F> fallback) {
     const V3<F> to = broadcast<F>(glm::vec3(light.position)) - p * F(light.position.w);
     return normalize_or(to, fallback);
 }
 
-// Blinn-Phong summed over the lights, exactly the seed's
+// Blinn-Phong summed over the lights, exactly
 //     L = ka*La + (kd*cos(theta) + ks*cos(delta)^shine) * Le,
 // cos(theta) = max(N.L, 0), cos(delta) = max(N.H, 0), H = |L + V|.
 template <class F>
@@ -44,9 +44,9 @@ V3<F> blinn_phong(std::span<const scene::Light> lights, V3<F> p, V3<F> n, V3<F> 
     return sum;
 }
 
-// The seed's NPR shader: y = dot(N, L) > 0.5 ? 1 : 0.5 and colour y * kd, black where
+// The NPR (toon) shader: y = dot(N, L) > 0.5 ? 1 : 0.5 and colour y * kd, black where
 // |dot(N, V)| < 0.2 (the silhouette). With several lights the levels add, weighted by Le
-// (one white light gives the seed's picture exactly).
+// (one white light gives the classic picture).
 template <class F>
 V3<F> toon(std::span<const scene::Light> lights, V3<F> p, V3<F> n, V3<F> v, V3<F> kd) {
     V3<F> sum{F(0.0f), F(0.0f), F(0.0f)};

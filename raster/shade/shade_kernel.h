@@ -136,7 +136,7 @@ void shade_lanes(const KernelContext& ctx, Lanes& d, int lane) {
             alpha = alpha * t.a;
         }
         if (ctx.normal) {
-            // seeds/004: the map stores tangent-space normals as RGB = n * 0.5 + 0.5.
+            // The map stores tangent-space normals as RGB = n * 0.5 + 0.5.
             const Texel<F> t = sample_texture<F>(*ctx.normal, m, u, v, udx, vdx, udy, vdy);
             const V mapped{fma(t.r, F(2.0f), F(-1.0f)), fma(t.g, F(2.0f), F(-1.0f)), fma(t.b, F(2.0f), F(-1.0f))};
             const F s[3] = {ld(d.uv[0][0]), ld(d.uv[1][0]), ld(d.uv[2][0])};

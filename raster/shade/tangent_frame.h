@@ -1,10 +1,11 @@
-// The tangent frame of a triangle from its positions and texture coordinates (seeds/004):
+// The tangent frame of a triangle from its positions and texture coordinates (Lengyel's
+// per-triangle tangent basis):
 //     Vec1 = p3 - p2, Vec2 = p1 - p2, dS1 = s3 - s2, dS2 = s1 - s2,
 //     tgT = |dS2 * Vec1 - dS1 * Vec2|,   tgS = |tgT x N|,
 // computed per triangle and never averaged across triangles, so texture seams (where the
-// same position carries two (s, t)) cannot produce a meaningless frame (the seed's warning).
+// same position carries two (s, t)) cannot produce a meaningless frame.
 //
-// Two additions the seed leaves to its triangle order, made explicit here:
+// Two additions the textbook formula leaves to the triangle order, made explicit here:
 // - dS2 * Vec1 - dS1 * Vec2 is the in-plane direction along which s stays constant; t changes
 //   along it by det = dS2 dT1 - dS1 dT2, so it is multiplied by det to point towards +t for
 //   either uv winding;

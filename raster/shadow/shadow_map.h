@@ -1,4 +1,4 @@
-// Shadow maps rendered by tessera's own rasterizer (the seed's ShadowShader idea: draw the
+// Shadow maps rendered by tessera's own rasterizer (Williams 1978: draw the
 // scene from the light, keep the depth), then looked up per surface point with a bias and
 // percentage-closer filtering.
 //

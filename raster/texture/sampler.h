@@ -1,5 +1,4 @@
-// Texture filtering (seeds/000, "textúra szűrés"): nearest, bilinear, mip-mapped, trilinear,
-// with repeat or clamp wrapping.
+// Texture filtering: nearest, bilinear, mip-mapped, trilinear, with repeat or clamp wrapping.
 //
 // The mip level comes from the screen-space derivatives of (u, v), which the shading stage
 // computes analytically from the triangle's plane equations (not from neighbouring pixels):

@@ -1,4 +1,4 @@
-// A texture: RGBA float texels in linear light plus its mip-map chain (seeds/000, "mip-map,
+// A texture: RGBA float texels in linear light plus its mip-map chain ("mip-map,
 // multum in parvo"), ready for the sampler (sampler.h).
 //
 // Orientation follows OpenGL and OBJ: texel row 0 is v = 0, the BOTTOM of an image file, and

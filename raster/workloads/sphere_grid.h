@@ -1,7 +1,7 @@
 // The benchmark scene of research/rasterizer-anchors.md 3.2: a ground plane under a g x g grid
-// of UV spheres (test_meshes::sphere, the seed's parametrisation), sized to a requested
-// triangle count. Tests and bench_raytrace use it so the
-// rasterizer and Embree are compared on the anchors' workload.
+// of UV spheres (workloads::sphere, the usual (cos 2pi u sin pi v, ...) parametrisation), sized
+// to a requested triangle count. Tests and bench_raytrace use it so the rasterizer and Embree
+// are compared on the anchors' workload.
 #pragma once
 #include <cstddef>
 

@@ -110,7 +110,7 @@ Mesh sphere(int segments, int rings) {
         for (int s = 0; s <= segments; ++s) {
             const float u = float(s) / float(segments), v = float(r) / float(rings);
             const float theta = 2.0f * std::numbers::pi_v<float> * u, phi = std::numbers::pi_v<float> * v;
-            // seeds/000: n = (cos 2pi u sin pi v, sin 2pi u sin pi v, cos pi v), p = c + R n.
+            // n = (cos 2pi u sin pi v, sin 2pi u sin pi v, cos pi v), p = c + R n.
             const glm::vec3 n(std::cos(theta) * std::sin(phi), std::sin(theta) * std::sin(phi), std::cos(phi));
             mesh.positions.push_back(n);
             mesh.normals.push_back(n);
