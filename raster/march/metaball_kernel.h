@@ -14,9 +14,9 @@
 //   the peak, so the correction is below 1 % of the kernel anywhere.
 //
 // Each kernel is written once over F = float (the scalar reference) and F = simd::vfloat (a
-// packet of points), with the arithmetic of raster/shade/shade_math.h, so both compute the same
-// formula in the same order; the exponential is shade::exp2_nonpositive (relative error
-// below 2e-6), which vectorises where std::exp would not.
+// packet of points), with the arithmetic of raster/simd/lane_math.h, so both compute the same
+// formula in the same order; the exponential is simd::exp2_nonpositive (relative error
+// below 1e-6), which vectorises where std::exp would not.
 #pragma once
 #include "raster/simd/lane_math.h"
 #include "raster/simd/simd.h"

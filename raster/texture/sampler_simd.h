@@ -2,7 +2,7 @@
 // wrap modes and level selection, with the texel fetches as hardware gathers from the
 // texture's packed mip chain (texture.h). Each lane may read a different mip level. The
 // scalar sample() is its reference (tests compare them); lambda's log2 is the polynomial of
-// shade_math.h, within 3e-7 of std::log2.
+// simd/lane_math.h (log2_positive), within 2e-6 of std::log2.
 #pragma once
 #include "raster/simd/lane_math.h"
 #include "raster/texture/sampler.h"
