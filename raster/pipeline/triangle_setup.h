@@ -56,7 +56,8 @@ static_assert(sizeof(TriangleSetup) == 80, "bins copy setups: keep them compact"
 enum class SetupResult { drawn, zero_area, culled_face, no_samples };
 
 // Sets up triangle v0 v1 v2 (in submission winding) for `viewport`. Returns drawn when `out`
-// holds a triangle that covers at least one pixel centre of its box.
+// holds a triangle whose box holds at least one pixel centre of the viewport; a sliver between
+// pixel centres may still cover none of them (traversal finds that out).
 SetupResult setup_triangle(const WindowVertex& v0, const WindowVertex& v1, const WindowVertex& v2,
                            CullMode cull, const Viewport& viewport, TriangleSetup& out);
 
