@@ -190,7 +190,7 @@ int run_rd(const Options& o) {
         }
         const std::vector<uint8_t> rgb = tp::rd_colorize(rd.state());
         const fs::path file = o.frames > 1 ? pattern.path_for(frame) : fs::path(o.out);
-        io::write_image(file, {width, height, 3, io::PixelType::u8, rgb.data()});
+        io::write_image(file, {width, height, 3, io::PixelType::u8, rgb.data(), /*srgb=*/true});
     }
     progress.finish();
     return 0;

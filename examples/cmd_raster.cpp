@@ -145,7 +145,7 @@ int run(const Options& o) {
     }
 
     if (!o.out_color.empty())
-        io::write_image(o.out_color, io::ImageView{width, height, 3, io::PixelType::u8, rgb8.data()});
+        io::write_image(o.out_color, io::ImageView{width, height, 3, io::PixelType::u8, rgb8.data(), /*srgb=*/true});
     if (!o.out_id.empty()) io::write_tsid(o.out_id, visibility);
     if (!o.out_depth.empty()) io::write_depth_pfm(o.out_depth, visibility);
 

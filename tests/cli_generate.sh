@@ -18,6 +18,10 @@ done
   || fail "rd --threads 2 exited $?"
 [ "$(head -c 8 "$dir/rd1.png" | od -An -tx1 | tr -d ' \n')" = 89504e470d0a1a0a ] || fail "rd output is not a PNG"
 cmp -s "$dir/rd1.png" "$dir/rd2.png" || fail "rd output differs between 1 and 2 threads"
+# As EXR the same pattern is stored as linear light (the PNG's sRGB colours decoded).
+"$tessera" generate rd --preset spots --size 48x32 --steps 200 --seed 3 --out "$dir/rd.exr" || fail "rd .exr exited $?"
+oiiotool "$dir/rd.exr" --colorconvert linear sRGB -d uint8 -o "$dir/rd_exr.png" || fail "oiiotool could not convert rd.exr"
+idiff -fail 0.0040 -warn 0.0040 "$dir/rd1.png" "$dir/rd_exr.png" >/dev/null || fail "rd EXR is not the linear light of the PNG"
 
 # An animation: --frames N writes N files, the '#' run becomes the zero-padded frame number.
 "$tessera" generate rd --size 16x16 --steps 30 --frames 3 --out "$dir/anim/f_#.png" 2>/dev/null \

@@ -21,6 +21,14 @@ grep -q 'triangles_in=' <<<"$out" || fail "no counts: $out"
 [ "$(head -n 1 "$dir/d.pfm")" = "Pf" ] || fail "depth is not a grey PFM"
 [ -s "$dir/c.png" ] || fail "no colour image"
 
+# An EXR colour output holds linear light: converted back to sRGB 8-bit by OpenImageIO it is
+# the PNG of the same render to within one level (half-float rounding). Storing the 8-bit sRGB
+# values as they are would make it brighter by up to 40 levels in the mid-tones.
+"$tessera" raster --mesh "$dir/s.obj" --camera "$dir/s.cam" --size 96x64 --shade phong \
+    --out-color "$dir/c.exr" || fail "raster --out-color c.exr exited $?"
+oiiotool "$dir/c.exr" --colorconvert linear sRGB -d uint8 -o "$dir/c_exr.png" || fail "oiiotool could not convert c.exr"
+idiff -fail 0.0040 -warn 0.0040 "$dir/c.png" "$dir/c_exr.png" >/dev/null || fail "EXR colour is not the linear light of the PNG"
+
 # Flags override the camera file; every shade mode and cull mode runs.
 for shade in id depth normal; do
     "$tessera" raster --mesh "$dir/s.obj" --camera "$dir/s.cam" --size 32x32 --shade $shade \

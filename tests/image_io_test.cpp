@@ -6,6 +6,7 @@
 #include <filesystem>
 #include <vector>
 
+#include "raster/core/color_space.h"
 #include "raster/core/error.h"
 
 namespace fs = std::filesystem;
@@ -46,6 +47,37 @@ TEST(ImageIO, ExrKeepsFloats) {
     io::FloatImage back = io::read_image(path);
     ASSERT_EQ(back.pixels.size(), pixels.size());
     for (size_t i = 0; i < pixels.size(); ++i) EXPECT_FLOAT_EQ(back.pixels[i], pixels[i]);
+}
+
+// 8-bit sRGB colour written to EXR is stored as linear light: reading it back gives
+// srgb_to_linear of each colour value (to half precision), alpha as v / 255; a PNG and a TIFF
+// keep the encoded values; 8-bit data that is not sRGB (srgb = false) is stored as v / 255.
+TEST(ImageIO, SrgbColourIsDecodedToLinearForExrOnly) {
+    std::vector<uint8_t> pixels(256 * 4);
+    for (int v = 0; v < 256; ++v)
+        for (int c = 0; c < 4; ++c) pixels[size_t(v) * 4 + size_t(c)] = uint8_t(c == 3 ? 255 - v : v);
+    io::write_image(scratch("srgb.exr"), {16, 16, 4, io::PixelType::u8, pixels.data(), /*srgb=*/true});
+    const io::FloatImage exr = io::read_image(scratch("srgb.exr"));
+    ASSERT_EQ(exr.channels, 4);
+    for (int v = 0; v < 256; ++v) {
+        const float linear = srgb_to_linear(float(v) / 255.0f);
+        for (int c = 0; c < 3; ++c)
+            EXPECT_NEAR(exr.pixels[size_t(v) * 4 + size_t(c)], linear, linear * 1e-3f + 1e-7f) << "value " << v;
+        EXPECT_NEAR(exr.pixels[size_t(v) * 4 + 3], float(255 - v) / 255.0f, 1e-3f) << "alpha " << v;
+    }
+    // (RGB here: OpenImageIO's PNG writer would divide colour by an alpha below one.)
+    std::vector<uint8_t> rgb(256 * 3);
+    for (size_t i = 0; i < rgb.size(); ++i) rgb[i] = uint8_t(i / 3);
+    for (const char* name : {"srgb.png", "srgb.tif"}) {
+        io::write_image(scratch(name), {16, 16, 3, io::PixelType::u8, rgb.data(), /*srgb=*/true});
+        const io::FloatImage back = io::read_image(scratch(name));
+        for (size_t i = 0; i < rgb.size(); ++i)
+            ASSERT_EQ(int(back.pixels[i] * 255.0f + 0.5f), int(rgb[i])) << name << " value " << i;
+    }
+    io::write_image(scratch("data.exr"), {16, 16, 4, io::PixelType::u8, pixels.data()});
+    const io::FloatImage data = io::read_image(scratch("data.exr"));
+    for (size_t i = 0; i < pixels.size(); ++i)
+        ASSERT_NEAR(data.pixels[i], float(pixels[i]) / 255.0f, 1e-3f) << "value " << i;
 }
 
 TEST(ImageIO, MissingDirectoryIsAnErrorAndLeavesNothing) {

@@ -70,7 +70,7 @@ int run(const Options& o) {
 
     if (!o.out_color.empty()) {
         const std::vector<uint8_t> rgb = frame.colour_rgb8();
-        io::write_image(o.out_color, io::ImageView{width, height, 3, io::PixelType::u8, rgb.data()});
+        io::write_image(o.out_color, io::ImageView{width, height, 3, io::PixelType::u8, rgb.data(), /*srgb=*/true});
     }
     if (!o.out_id.empty() || !o.out_depth.empty()) {
         const VisibilityBuffer visibility = frame.visibility();

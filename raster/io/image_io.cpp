@@ -3,10 +3,13 @@
 #include <OpenImageIO/filesystem.h>
 #include <OpenImageIO/imageio.h>
 
+#include <cstdint>
 #include <string>
 #include <system_error>
+#include <vector>
 
 #include "raster/core/atomic_file.h"
+#include "raster/core/color_space.h"
 #include "raster/core/error.h"
 #include "raster/io/oiio_pixel_type.h"
 
@@ -16,6 +19,20 @@ namespace fs = std::filesystem;
 namespace {
 
 std::string describe(const fs::path& path) { return "'" + path.string() + "'"; }
+
+// The 8-bit sRGB colour channels of `image` decoded to linear light (IEC 61966-2-1), alpha as
+// v / 255.
+std::vector<float> srgb8_to_linear(const ImageView& image) {
+    float decoded[256];
+    for (int v = 0; v < 256; ++v) decoded[v] = srgb_to_linear(float(v) / 255.0f);
+    const int c = image.channels;
+    const int alpha = c == 2 || c == 4 ? c - 1 : -1;
+    const auto* in = static_cast<const uint8_t*>(image.pixels);
+    std::vector<float> out(size_t(image.width) * size_t(image.height) * size_t(c));
+    for (size_t i = 0; i < out.size(); ++i)
+        out[i] = int(i % size_t(c)) == alpha ? float(in[i]) / 255.0f : decoded[in[i]];
+    return out;
+}
 
 }  // namespace
 
@@ -57,9 +74,18 @@ void write_image(const fs::path& path, const ImageView& image) {
         throw Error("cannot write " + describe(path) + ": format '" +
                     std::string(out->format_name()) + "' cannot be encoded in memory");
 
-    OIIO::ImageSpec spec(image.width, image.height, image.channels, oiio_type(image.type));
+    // OpenEXR and Radiance HDR hold linear light by definition; OpenImageIO would store 8-bit
+    // values there as they are (v / 255), which is sRGB-encoded light mislabelled as linear.
+    const std::string format = out->format_name();
+    const bool decode_srgb = image.srgb && image.type == PixelType::u8 && (format == "openexr" || format == "hdr");
+    std::vector<float> linear;
+    if (decode_srgb) linear = srgb8_to_linear(image);
+
+    OIIO::ImageSpec spec(image.width, image.height, image.channels,
+                         decode_srgb ? OIIO::TypeDesc(OIIO::TypeDesc::HALF) : oiio_type(image.type));
     bool ok = out->open(path.string(), spec) &&
-              out->write_image(oiio_type(image.type), image.pixels);
+              (decode_srgb ? out->write_image(OIIO::TypeDesc::FLOAT, linear.data())
+                           : out->write_image(oiio_type(image.type), image.pixels));
     ok = out->close() && ok;
     if (!ok) {
         std::string why = out->geterror();

@@ -20,12 +20,17 @@ inline size_t pixel_type_bytes(PixelType type) {
 }
 
 // A read-only view of pixels in memory; `pixels` holds width*height*channels values of `type`.
+// `srgb` says that 8-bit colour channels hold sRGB-encoded display values (a rendered or
+// colour-mapped image) rather than data (normals, masks): write_image decodes those to linear
+// light for formats that store linear light (OpenEXR, Radiance HDR). Alpha (the 2nd of two or
+// 4th of four channels) is linear in every format and never decoded.
 struct ImageView {
     int width = 0;
     int height = 0;
     int channels = 0;
     PixelType type = PixelType::u8;
     const void* pixels = nullptr;
+    bool srgb = false;
 };
 
 // An image read back as 32-bit floats (8/16-bit files are normalised to [0,1]).
@@ -38,7 +43,9 @@ struct FloatImage {
 };
 
 // Writes `image` to `path`; the file stores the pixel type given where the format supports it
-// (OpenImageIO converts otherwise, e.g. float to 16-bit for PNG). Throws tessera::Error.
+// (OpenImageIO converts otherwise, e.g. float to 16-bit for PNG), except that 8-bit sRGB
+// colour (ImageView::srgb) bound for a linear-light format is stored as linear half floats.
+// Throws tessera::Error.
 void write_image(const std::filesystem::path& path, const ImageView& image);
 
 // Reads any image OpenImageIO understands. Throws tessera::Error with the reason.

@@ -68,7 +68,7 @@ void write_mask_diff(const std::filesystem::path& path, const LightMask& a, cons
             out[0] = out[1] = out[2] = a.bits[p] ? 235 : 90;
         }
     }
-    io::write_image(path, io::ImageView{visibility.width, visibility.height, 3, io::PixelType::u8, rgb.data()});
+    io::write_image(path, io::ImageView{visibility.width, visibility.height, 3, io::PixelType::u8, rgb.data(), /*srgb=*/true});
 }
 
 }  // namespace tessera::shadow
