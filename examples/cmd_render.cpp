@@ -28,21 +28,21 @@
 
 #include "examples/command.h"
 #include "examples/distribute.h"
+#include "examples/farm/frame_claim.h"
+#include "examples/frame_sequence.h"
 #include "examples/progress.h"
 #include "examples/render_farm.h"
 #include "raster/asset/framing.h"
 #include "raster/core/error.h"
-#include "examples/farm/frame_claim.h"
+#include "raster/core/trace.h"
 #include "raster/io/image_io.h"
 #include "raster/output/frame_encoding.h"
 #include "raster/output/frame_stream.h"
-#include "examples/frame_sequence.h"
 #include "raster/output/frame_writer.h"
 #include "raster/render/frame_renderer.h"
 #include "raster/scene_file/scene_build.h"
 #include "raster/scene_file/scene_library.h"
 #include "raster/scene_file/scene_parse.h"
-#include "raster/core/trace.h"
 
 namespace tessera::cli {
 namespace {
@@ -102,228 +102,343 @@ void remove_stale_temporaries(const std::vector<fs::path>& frames) {
     }
 }
 
-int run(const Options& o, const std::string& executable) {
-    const auto guard = limit_threads(o.threads);
-    // Scene.
-    const fs::path file = scene_file::find_scene(o.scene, scene_file::scene_directories(TESSERA_SCENE_DIR, executable));
+// The scene file named by --scene, read and checked (its warnings printed).
+struct LoadedScene {
+    fs::path file;
+    std::string name;  // the file's stem: names the default output and the progress line
+    scene_file::SceneSpec spec;
+};
+
+LoadedScene load_scene(const std::string& scene, const std::string& executable) {
+    LoadedScene loaded;
+    loaded.file = scene_file::find_scene(scene, scene_file::scene_directories(TESSERA_SCENE_DIR, executable));
     std::vector<std::string> warnings;
-    scene_file::SceneSpec spec = scene_file::load_scene_file(file, warnings);
+    loaded.spec = scene_file::load_scene_file(loaded.file, warnings);
     for (const std::string& w : warnings) std::fprintf(stderr, "tessera: warning: %s\n", w.c_str());
-    const std::string scene_name = file.stem().string();
+    loaded.name = loaded.file.stem().string();
+    return loaded;
+}
 
-    // Flags over the scene's defaults, all checked before any work.
-    int width = spec.size.x, height = spec.size.y;
-    if (!o.size.empty()) parse_size(o.size, "--size", width, height);
-    if (width > kMaxSide || height > kMaxSide)
-        throw UsageError("--size " + std::to_string(width) + "x" + std::to_string(height) + ": at most " +
+// What the run renders: the flags over the scene's defaults, all checked before any work.
+struct RenderPlan {
+    int width = 0, height = 0;
+    FrameRange range;
+    Shard shard;
+    float fps = 0.0f;
+    FramePattern pattern{""};
+    render::RendererKind renderer{};
+    render::ShadowMode shadows{};
+    DistributeMode mode{};
+};
+
+RenderPlan plan_render(const Options& o, const LoadedScene& scene) {
+    const scene_file::SceneSpec& spec = scene.spec;
+    RenderPlan plan;
+    plan.width = spec.size.x, plan.height = spec.size.y;
+    if (!o.size.empty()) parse_size(o.size, "--size", plan.width, plan.height);
+    if (plan.width > kMaxSide || plan.height > kMaxSide)
+        throw UsageError("--size " + std::to_string(plan.width) + "x" + std::to_string(plan.height) + ": at most " +
                          std::to_string(kMaxSide) + " pixels per side");
-    FrameRange range{spec.animation.first, spec.animation.last};
-    if (!o.frames.empty()) range = parse_frame_range(o.frames);
-    const Shard shard = parse_shard(o.shard);
-    const float fps = o.fps > 0.0f ? o.fps : spec.animation.fps;
-    if (!(fps > 0.0f) || !std::isfinite(fps)) throw UsageError("--fps must be positive");
-    const FramePattern pattern(o.out.empty() ? "out/" + scene_name + "_####.png" : o.out);
-    if (!pattern.has_placeholder() && range.count() > 1)
-        throw UsageError("--out '" + pattern.text() + "' has no #### or %04d, but " + std::to_string(range.count()) +
+    plan.range = FrameRange{spec.animation.first, spec.animation.last};
+    if (!o.frames.empty()) plan.range = parse_frame_range(o.frames);
+    plan.shard = parse_shard(o.shard);
+    plan.fps = o.fps > 0.0f ? o.fps : spec.animation.fps;
+    if (!(plan.fps > 0.0f) || !std::isfinite(plan.fps)) throw UsageError("--fps must be positive");
+    plan.pattern = FramePattern(o.out.empty() ? "out/" + scene.name + "_####.png" : o.out);
+    const FramePattern& pattern = plan.pattern;
+    if (!pattern.has_placeholder() && plan.range.count() > 1)
+        throw UsageError("--out '" + pattern.text() + "' has no #### or %04d, but " + std::to_string(plan.range.count()) +
                          " frames would overwrite it");
-    if (!io::image_format_supported(pattern.path_for(range.first)))
+    if (!io::image_format_supported(pattern.path_for(plan.range.first)))
         throw UsageError("--out '" + pattern.text() + "': no image format for that extension (use .png, .exr or .tif)");
-    const render::RendererKind renderer = render::parse_renderer(o.renderer);
-    const render::ShadowMode shadows = render::parse_shadow_mode(o.shadows.empty() ? spec.shadows : o.shadows);
-    const DistributeMode mode = parse_distribute(o.farm.distribute);
-    if (mode == DistributeMode::tiles && o.farm.claim)
+    plan.renderer = render::parse_renderer(o.renderer);
+    plan.shadows = render::parse_shadow_mode(o.shadows.empty() ? spec.shadows : o.shadows);
+    plan.mode = parse_distribute(o.farm.distribute);
+    if (plan.mode == DistributeMode::tiles && o.farm.claim)
         throw UsageError("--claim works on whole frames: not with --distribute tiles");
+    return plan;
+}
 
-    prepare_output_directory(pattern.path_for(range.first));
+// This shard's frames still to render: with --resume, complete frames are skipped (and the
+// temporaries a killed run left beside the others removed).
+struct PendingFrames {
     std::vector<int> frames;
     int skipped = 0;
-    const std::vector<int> shard_frames = frames_of_shard(range, shard);
+};
+
+PendingFrames pending_frames(const Options& o, const RenderPlan& plan) {
+    PendingFrames pending;
+    const std::vector<int> shard_frames = frames_of_shard(plan.range, plan.shard);
     if (o.resume && !o.farm.claim) {  // with --claim, a frame's temporaries go when its claim is won
         std::vector<fs::path> paths;
-        for (int f : shard_frames) paths.push_back(pattern.path_for(f));
+        for (int f : shard_frames) paths.push_back(plan.pattern.path_for(f));
         remove_stale_temporaries(paths);
     }
     for (int f : shard_frames) {
-        const fs::path path = pattern.path_for(f);
-        if (!(o.resume && io::image_is_complete(path, width, height))) {
-            frames.push_back(f);
+        const fs::path path = plan.pattern.path_for(f);
+        if (!(o.resume && io::image_is_complete(path, plan.width, plan.height))) {
+            pending.frames.push_back(f);
             continue;
         }
-        ++skipped;
+        ++pending.skipped;
         // A process killed between publishing a frame and removing its claim leaves the claim
         // behind: break it by the usual protocol (stale owners only) and hand it straight back.
         if (o.farm.claim &&
             farm::try_claim(path, {true, o.farm.claim_timeout}) != farm::ClaimResult::held)
             farm::release_claim(path);
     }
+    return pending;
+}
 
-    const std::unique_ptr<Distribution> distribution = make_distribution(mode, std::move(frames));
-    Distribution& dist = *distribution;
-    const bool rank0 = dist.rank() == 0;
+// Per-stage times of the frames rendered, for --stats and its summary.
+struct StageTimes {
+    std::vector<double> total, animate, bake, bvh, visibility, tiles;
 
-    Trace trace;
-    if (!o.trace.empty()) trace.activate();
-    render::AnimatedScene scene = [&] {
-        TraceScope t("build scene");
-        std::vector<std::string> build_warnings;
-        render::AnimatedScene built = scene_file::build_scene(spec, &build_warnings);
-        if (rank0) {
-            for (const std::string& w : build_warnings) std::fprintf(stderr, "tessera: warning: %s\n", w.c_str());
-            if (!spec.camera_given)
-                std::fprintf(stderr, "tessera: camera (framed): %s\n", asset::camera_flags(built.camera.camera).c_str());
-        }
-        return built;
-    }();
-    render::FrameRenderer frame_renderer(scene, width, height, renderer, shadows);
-    output::FrameWriter writer(2, output::FileSettings{output::parse_png_compression(o.png)});
-    FarmRun farm(o.farm, o.resume, scene, spec.textures, scene_name, pattern.path_for(range.first));
-    const bool banded = render::needs_bands(width, height);
-    const render::BandLayout layout = render::band_layout(width, height);
-    if (!banded) {
-        const auto [rows_first, rows_last] = dist.rows(height);
-        frame_renderer.set_rows(rows_first, rows_last);
-    }
-    // Distributed: a failure is handed to rank 0 (which names the rank and the frame) instead
-    // of ending this rank alone. A failed write names the first frame not yet on disk.
-    std::vector<std::pair<fs::path, int>> submitted;
-    const auto failed_write = [&] {
-        const std::vector<fs::path> written = writer.written();
-        for (const auto& [path, f] : submitted)
-            if (std::find(written.begin(), written.end(), path) == written.end()) return f;
-        return submitted.empty() ? -1 : submitted.back().second;
-    };
-    std::string tile_failure;  // tiles: a write failure on rank 0, reported at the next gather
-    int tile_failure_frame = -1;
-    frames = dist.pending();
-
-    const bool tty = isatty(fileno(stderr)) != 0 && !o.quiet;
-    // On a terminal: a bar redrawn in place ("frame k/n, frames/s, ETA"); otherwise one plain
-    // line per frame, which logs and farm schedulers keep.
-    std::unique_ptr<Progress> progress;
-    if (tty && !frames.empty()) progress = std::make_unique<Progress>(scene_name, int64_t(frames.size()), "frames");
-    if (!o.quiet && skipped > 0 && rank0) std::fprintf(stderr, "resume: %d complete frame(s) skipped\n", skipped);
-    std::signal(SIGINT, on_interrupt);
-    const auto start = std::chrono::steady_clock::now();
-    std::vector<double> totals, animate, bake, bvh, visibility, tiles;
-    size_t done = 0;
-    Frame frame;  // reused: every frame is rendered into the same buffer
-    while (const std::optional<int> next = dist.next_frame()) {
-        if (g_interrupted) break;
-        const int f = *next;
-        const fs::path path = pattern.path_for(f);
-        if (!farm.claim(path, width, height)) continue;
-        render::FrameStats st;
-        if (banded) {
-            // Rendered band by band and streamed into the file (on rank 0 in tiles mode); the
-            // file is created with the first band and published with the last.
-            std::optional<output::FrameStream> file;
-            const auto encode = [&](const Frame& band) { return output::encode_frame(path, band); };
-            const auto write = [&](int b, output::OwnedImage band) {
-                if (!file) file.emplace(path, width, height);
-                file->write(layout.rows(b).first, std::move(band));
-                if (b + 1 == layout.bands()) file->commit();
-            };
-            const auto render = [&](const render::FrameRenderer::BandFilter& mine, const render::FrameRenderer::BandSink& deliver) {
-                farm.simulate(f);
-                TraceScope t("frame", "frame", f);
-                frame_renderer.render_bands(float(f) / fps, layout, mine, deliver, &st);
-            };
-            try {
-                if (!dist.stream_bands(f, layout, render, encode, write)) continue;
-            } catch (const std::exception& e) {
-                if (dist.ranks() == 1) throw;
-                dist.fail(f, e.what());
-                break;
-            }
-            writer.record_written(path);
-        } else {
-            std::string failure = std::move(tile_failure);
-            tile_failure.clear();
-            try {
-                farm.simulate(f);
-                TraceScope t("frame", "frame", f);
-                frame_renderer.render(float(f) / fps, frame, &st);
-            } catch (const std::exception& e) {
-                if (dist.ranks() == 1) throw;
-                if (failure.empty()) failure = e.what();
-            }
-            if (mode == DistributeMode::tiles) {
-                const int reported = tile_failure_frame >= 0 && !failure.empty() ? tile_failure_frame : f;
-                tile_failure_frame = -1;
-                if (!dist.gather(reported, frame, failure)) continue;
-            } else if (!failure.empty()) {
-                dist.fail(f, failure);
-                break;
-            }
-            try {
-                writer.submit(path, output::encode_frame(path, frame));
-                submitted.emplace_back(path, f);
-            } catch (const Error& e) {
-                if (dist.ranks() == 1) throw;
-                if (mode == DistributeMode::tiles) {
-                    tile_failure = e.what();
-                    tile_failure_frame = failed_write();
-                    continue;
-                }
-                dist.fail(failed_write(), e.what());
-                break;
-            }
-        }
-        farm.published(writer.written());
-        ++done;
-        totals.push_back(st.total_ms);
+    void add(const render::FrameStats& st) {
+        total.push_back(st.total_ms);
         animate.push_back(st.animate_ms);
         bake.push_back(st.bake_ms);
         bvh.push_back(st.bvh_ms);
         visibility.push_back(st.visibility_ms);
         tiles.push_back(st.tiles_ms);
-        if (o.stats)
-            std::fprintf(stderr,
-                         "%sframe %d: %.1f ms (animate %.1f, bake %.1f, bvh %.1f, visibility %.1f [vertex %.1f, "
-                         "setup+bin %.1f], tiles %.1f [shade, shadows, passes]), %llu triangles, %llu shadowed "
-                         "pixels\n",
-                         tty ? "\r\033[K" : "", f, st.total_ms, st.animate_ms, st.bake_ms, st.bvh_ms,
-                         st.visibility_ms, st.raster.vertex_ms, st.raster.setup_bin_ms, st.tiles_ms,
-                         static_cast<unsigned long long>(st.triangles),
-                         static_cast<unsigned long long>(st.shadowed_pixels));
-        if (progress) {
-            progress->update(int64_t(done));
-        } else if (!o.quiet) {
-            std::fprintf(stderr, "frame %d (%zu/%zu) %.1f ms -> %s\n", f, done, frames.size(), st.total_ms,
-                         path.string().c_str());
-        }
+    }
+};
+
+// The frame loop of one process: renders the frames the distribution hands it, in memory or
+// band by band, writes them through the background writer, reports progress and failures.
+class FrameLoop {
+public:
+    FrameLoop(const Options& o, const LoadedScene& scene, const RenderPlan& plan, std::vector<int> frames);
+    // Renders every frame; returns the exit code.
+    int run(int skipped);
+
+private:
+    enum class Outcome { rendered, skipped, stop };
+    Outcome render_in_bands(int f, const fs::path& path, render::FrameStats& st);
+    Outcome render_in_memory(int f, const fs::path& path, render::FrameStats& st);
+    void report(int f, const fs::path& path, const render::FrameStats& st);
+    // `interrupted`: Ctrl-C stopped the loop.
+    int finish(bool interrupted);
+    // A failed write names the first frame not yet on disk.
+    int failed_write() const;
+
+    const Options& o_;
+    const LoadedScene& loaded_;
+    const RenderPlan& plan_;
+    const std::unique_ptr<Distribution> distribution_;
+    Distribution& dist_;
+    Trace trace_;
+    render::AnimatedScene scene_;
+    render::FrameRenderer frame_renderer_;
+    output::FrameWriter writer_;
+    FarmRun farm_;
+    const bool banded_;
+    const render::BandLayout layout_;
+    // Distributed: a failure is handed to rank 0 (which names the rank and the frame) instead
+    // of ending this rank alone.
+    std::vector<std::pair<fs::path, int>> submitted_;
+    std::string tile_failure_;  // tiles: a write failure on rank 0, reported at the next gather
+    int tile_failure_frame_ = -1;
+    Frame frame_;  // reused: every frame is rendered into the same buffer
+    std::vector<int> frames_;  // this rank's share, as the distribution sees it
+    const bool tty_;
+    std::unique_ptr<Progress> progress_;
+    std::chrono::steady_clock::time_point start_;
+    StageTimes times_;
+    size_t done_ = 0;
+};
+
+FrameLoop::FrameLoop(const Options& o, const LoadedScene& scene, const RenderPlan& plan, std::vector<int> frames)
+    : o_(o),
+      loaded_(scene),
+      plan_(plan),
+      distribution_(make_distribution(plan.mode, std::move(frames))),
+      dist_(*distribution_),
+      scene_([&] {
+          if (!o.trace.empty()) trace_.activate();
+          TraceScope t("build scene");
+          std::vector<std::string> warnings;
+          render::AnimatedScene built = scene_file::build_scene(scene.spec, &warnings);
+          if (dist_.rank() == 0) {
+              for (const std::string& w : warnings) std::fprintf(stderr, "tessera: warning: %s\n", w.c_str());
+              if (!scene.spec.camera_given)
+                  std::fprintf(stderr, "tessera: camera (framed): %s\n", asset::camera_flags(built.camera.camera).c_str());
+          }
+          return built;
+      }()),
+      frame_renderer_(scene_, plan.width, plan.height, plan.renderer, plan.shadows),
+      writer_(2, output::FileSettings{output::parse_png_compression(o.png)}),
+      farm_(o.farm, o.resume, scene_, scene.spec.textures, scene.name, plan.pattern.path_for(plan.range.first)),
+      banded_(render::needs_bands(plan.width, plan.height)),
+      layout_(render::band_layout(plan.width, plan.height)),
+      frames_(dist_.pending()),
+      tty_(isatty(fileno(stderr)) != 0 && !o.quiet) {
+    if (!banded_) {
+        const auto [rows_first, rows_last] = dist_.rows(plan.height);
+        frame_renderer_.set_rows(rows_first, rows_last);
+    }
+}
+
+int FrameLoop::failed_write() const {
+    const std::vector<fs::path> written = writer_.written();
+    for (const auto& [path, f] : submitted_)
+        if (std::find(written.begin(), written.end(), path) == written.end()) return f;
+    return submitted_.empty() ? -1 : submitted_.back().second;
+}
+
+int FrameLoop::run(int skipped) {
+    // On a terminal: a bar redrawn in place ("frame k/n, frames/s, ETA"); otherwise one plain
+    // line per frame, which logs and farm schedulers keep.
+    if (tty_ && !frames_.empty())
+        progress_ = std::make_unique<Progress>(loaded_.name, int64_t(frames_.size()), "frames");
+    if (!o_.quiet && skipped > 0 && dist_.rank() == 0)
+        std::fprintf(stderr, "resume: %d complete frame(s) skipped\n", skipped);
+    std::signal(SIGINT, on_interrupt);
+    start_ = std::chrono::steady_clock::now();
+    while (const std::optional<int> next = dist_.next_frame()) {
+        if (g_interrupted) break;
+        const int f = *next;
+        const fs::path path = plan_.pattern.path_for(f);
+        if (!farm_.claim(path, plan_.width, plan_.height)) continue;
+        render::FrameStats st;
+        const Outcome outcome = banded_ ? render_in_bands(f, path, st) : render_in_memory(f, path, st);
+        if (outcome == Outcome::skipped) continue;
+        if (outcome == Outcome::stop) break;
+        report(f, path, st);
+    }
+    return finish(g_interrupted != 0);
+}
+
+// Rendered band by band and streamed into the file (on rank 0 in tiles mode); the file is
+// created with the first band and published with the last.
+FrameLoop::Outcome FrameLoop::render_in_bands(int f, const fs::path& path, render::FrameStats& st) {
+    std::optional<output::FrameStream> file;
+    const auto encode = [&](const Frame& band) { return output::encode_frame(path, band); };
+    const auto write = [&](int b, output::OwnedImage band) {
+        if (!file) file.emplace(path, plan_.width, plan_.height);
+        file->write(layout_.rows(b).first, std::move(band));
+        if (b + 1 == layout_.bands()) file->commit();
+    };
+    const auto render = [&](const render::FrameRenderer::BandFilter& mine,
+                            const render::FrameRenderer::BandSink& deliver) {
+        farm_.simulate(f);
+        TraceScope t("frame", "frame", f);
+        frame_renderer_.render_bands(float(f) / plan_.fps, layout_, mine, deliver, &st);
+    };
+    try {
+        if (!dist_.stream_bands(f, layout_, render, encode, write)) return Outcome::skipped;
+    } catch (const std::exception& e) {
+        if (dist_.ranks() == 1) throw;
+        dist_.fail(f, e.what());
+        return Outcome::stop;
+    }
+    writer_.record_written(path);
+    return Outcome::rendered;
+}
+
+// Rendered whole in memory (gathered to rank 0 in tiles mode) and handed to the background
+// writer.
+FrameLoop::Outcome FrameLoop::render_in_memory(int f, const fs::path& path, render::FrameStats& st) {
+    Frame& frame = frame_;
+    std::string failure = std::move(tile_failure_);
+    tile_failure_.clear();
+    try {
+        farm_.simulate(f);
+        TraceScope t("frame", "frame", f);
+        frame_renderer_.render(float(f) / plan_.fps, frame, &st);
+    } catch (const std::exception& e) {
+        if (dist_.ranks() == 1) throw;
+        if (failure.empty()) failure = e.what();
+    }
+    if (plan_.mode == DistributeMode::tiles) {
+        const int reported = tile_failure_frame_ >= 0 && !failure.empty() ? tile_failure_frame_ : f;
+        tile_failure_frame_ = -1;
+        if (!dist_.gather(reported, frame, failure)) return Outcome::skipped;
+    } else if (!failure.empty()) {
+        dist_.fail(f, failure);
+        return Outcome::stop;
     }
     try {
-        writer.finish();
+        writer_.submit(path, output::encode_frame(path, frame));
+        submitted_.emplace_back(path, f);
     } catch (const Error& e) {
-        if (dist.ranks() == 1) throw;
-        dist.fail(failed_write(), e.what());
+        if (dist_.ranks() == 1) throw;
+        if (plan_.mode == DistributeMode::tiles) {
+            tile_failure_ = e.what();
+            tile_failure_frame_ = failed_write();
+            return Outcome::skipped;
+        }
+        dist_.fail(failed_write(), e.what());
+        return Outcome::stop;
     }
-    farm.published(writer.written());
-    if (progress && !g_interrupted) progress->finish();
-    progress.reset();
-    if (!dist.finish()) return 1;  // rank 0 reports the failure (finish() throws there)
-    if (!o.trace.empty()) {
-        trace.deactivate();
-        trace.write(o.trace);
+    return Outcome::rendered;
+}
+
+void FrameLoop::report(int f, const fs::path& path, const render::FrameStats& st) {
+    farm_.published(writer_.written());
+    ++done_;
+    times_.add(st);
+    if (o_.stats)
+        std::fprintf(stderr,
+                     "%sframe %d: %.1f ms (animate %.1f, bake %.1f, bvh %.1f, visibility %.1f [vertex %.1f, "
+                     "setup+bin %.1f], tiles %.1f [shade, shadows, passes]), %llu triangles, %llu shadowed "
+                     "pixels\n",
+                     tty_ ? "\r\033[K" : "", f, st.total_ms, st.animate_ms, st.bake_ms, st.bvh_ms,
+                     st.visibility_ms, st.raster.vertex_ms, st.raster.setup_bin_ms, st.tiles_ms,
+                     static_cast<unsigned long long>(st.triangles),
+                     static_cast<unsigned long long>(st.shadowed_pixels));
+    if (progress_) {
+        progress_->update(int64_t(done_));
+    } else if (!o_.quiet) {
+        std::fprintf(stderr, "frame %d (%zu/%zu) %.1f ms -> %s\n", f, done_, frames_.size(), st.total_ms,
+                     path.string().c_str());
     }
-    const double elapsed = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-    if (o.stats && done > 0)
+}
+
+// Waits for the writer and the other ranks, writes the trace, prints the summary.
+int FrameLoop::finish(bool interrupted) {
+    try {
+        writer_.finish();
+    } catch (const Error& e) {
+        if (dist_.ranks() == 1) throw;
+        dist_.fail(failed_write(), e.what());
+    }
+    farm_.published(writer_.written());
+    if (progress_ && !interrupted) progress_->finish();
+    progress_.reset();
+    if (!dist_.finish()) return 1;  // rank 0 reports the failure (finish() throws there)
+    if (!o_.trace.empty()) {
+        trace_.deactivate();
+        trace_.write(o_.trace);
+    }
+    const double elapsed = std::chrono::duration<double>(std::chrono::steady_clock::now() - start_).count();
+    if (o_.stats && done_ > 0)
         std::fprintf(stderr,
                      "summary: %zu frames of %dx%d in %.2f s (%.2f fps); median per frame: total %.1f ms, animate %.1f, "
                      "bake %.1f, bvh %.1f, visibility %.1f, tiles %.1f\n",
-                     done, width, height, elapsed, double(done) / elapsed, median(totals), median(animate),
-                     median(bake), median(bvh), median(visibility), median(tiles));
-    if (g_interrupted) {
-        std::fprintf(stderr, "tessera: interrupted: %zu frame(s) written; rerun with --resume to continue\n", done);
+                     done_, plan_.width, plan_.height, elapsed, double(done_) / elapsed, median(times_.total),
+                     median(times_.animate), median(times_.bake), median(times_.bvh), median(times_.visibility),
+                     median(times_.tiles));
+    if (interrupted) {
+        std::fprintf(stderr, "tessera: interrupted: %zu frame(s) written; rerun with --resume to continue\n", done_);
         return 130;
     }
-    if (!o.quiet && farm.held_elsewhere() > 0)
+    if (!o_.quiet && farm_.held_elsewhere() > 0)
         std::fprintf(stderr, "claim: %d frame(s) claimed by other processes were left to them\n",
-                     farm.held_elsewhere());
-    if (!o.quiet && !tty)
-        std::fprintf(stderr, "rendered %zu frame(s) in %.2f s\n", done, elapsed);
+                     farm_.held_elsewhere());
+    if (!o_.quiet && !tty_) std::fprintf(stderr, "rendered %zu frame(s) in %.2f s\n", done_, elapsed);
     return 0;
+}
+
+// The command: the scene, the plan, the frames still to render, then the frame loop.
+int run(const Options& o, const std::string& executable) {
+    const auto guard = limit_threads(o.threads);
+    const LoadedScene scene = load_scene(o.scene, executable);
+    const RenderPlan plan = plan_render(o, scene);
+    prepare_output_directory(plan.pattern.path_for(plan.range.first));
+    PendingFrames pending = pending_frames(o, plan);
+    FrameLoop loop(o, scene, plan, std::move(pending.frames));
+    return loop.run(pending.skipped);
 }
 
 // The running binary (for scene directories next to an installed tessera).
