@@ -9,6 +9,7 @@
 #include <thread>
 
 #include "examples/command.h"
+#include "examples/resident_memory.h"
 
 namespace tessera::cli {
 namespace {
@@ -44,6 +45,8 @@ Run define_info(CLI::App& root) {
                             : "without 16-wide packets");
             rtcReleaseDevice(device);
         }
+        if (const char* sanitizer = sanitizer_allocator())
+            std::printf("sanitizer: %s (its allocator and shadow memory count in the resident set)\n", sanitizer);
         return 0;
     };
 }

@@ -32,6 +32,7 @@
 #include "examples/frame_sequence.h"
 #include "examples/progress.h"
 #include "examples/render_farm.h"
+#include "examples/resident_memory.h"
 #include "raster/asset/framing.h"
 #include "raster/core/error.h"
 #include "raster/core/trace.h"
@@ -382,11 +383,11 @@ void FrameLoop::report(int f, const fs::path& path, const render::FrameStats& st
         std::fprintf(stderr,
                      "%sframe %d: %.1f ms (animate %.1f, bake %.1f, bvh %.1f, visibility %.1f [vertex %.1f, "
                      "setup+bin %.1f], tiles %.1f [shade, shadows, passes]), %llu triangles, %llu shadowed "
-                     "pixels\n",
+                     "pixels, heap %.1f MiB, rss %.1f MiB\n",
                      tty_ ? "\r\033[K" : "", f, st.total_ms, st.animate_ms, st.bake_ms, st.bvh_ms,
                      st.visibility_ms, st.raster.vertex_ms, st.raster.setup_bin_ms, st.tiles_ms,
                      static_cast<unsigned long long>(st.triangles),
-                     static_cast<unsigned long long>(st.shadowed_pixels));
+                     static_cast<unsigned long long>(st.shadowed_pixels), heap_mib(), resident_mib());
     if (progress_) {
         progress_->update(int64_t(done_));
     } else if (!o_.quiet) {
@@ -415,10 +416,10 @@ int FrameLoop::finish(bool interrupted) {
     if (o_.stats && done_ > 0)
         std::fprintf(stderr,
                      "summary: %zu frames of %dx%d in %.2f s (%.2f fps); median per frame: total %.1f ms, animate %.1f, "
-                     "bake %.1f, bvh %.1f, visibility %.1f, tiles %.1f\n",
+                     "bake %.1f, bvh %.1f, visibility %.1f, tiles %.1f; peak rss %.1f MiB\n",
                      done_, plan_.width, plan_.height, elapsed, double(done_) / elapsed, median(times_.total),
                      median(times_.animate), median(times_.bake), median(times_.bvh), median(times_.visibility),
-                     median(times_.tiles));
+                     median(times_.tiles), peak_resident_mib());
     if (interrupted) {
         std::fprintf(stderr, "tessera: interrupted: %zu frame(s) written; rerun with --resume to continue\n", done_);
         return 130;
@@ -471,7 +472,7 @@ TESSERA_COMMAND(20, [](CLI::App& root) -> Run {
     cmd->add_flag("--resume", o->resume, "Skip frames whose files are already complete");
     cmd->add_option("--shard", o->shard, "Render shard I of N (every N-th frame from the I-th, 0-based)")
         ->capture_default_str();
-    cmd->add_flag("--stats", o->stats, "Print per-stage times per frame and a summary");
+    cmd->add_flag("--stats", o->stats, "Print per-stage times and memory (heap, resident) per frame, and a summary");
     cmd->add_option("--trace", o->trace, "Write a Chrome trace event JSON (Perfetto, chrome://tracing)");
     cmd->add_flag("--quiet", o->quiet, "No progress output");
     add_farm_options(*cmd, o->farm);
