@@ -8,7 +8,8 @@
 // renders, each atomically (temp name + rename), so an interrupted run leaves only complete
 // frames and --resume skips them. Frames beyond one 8192x8192 pass are rendered band by band
 // and streamed into their file (FrameRenderer::render_bands, FrameStream), so memory holds a
-// band, not the frame. Ctrl-C finishes the frame in hand, waits for the writer and exits 130.
+// band, not the frame. Ctrl-C, SIGTERM or SIGHUP finishes the frame in hand, waits for the
+// writer and exits 128 + the signal's number (130, 143, 129).
 // Exit codes as every command: 2 for bad flags, 1 for a failed run.
 #include <unistd.h>
 
@@ -17,7 +18,6 @@
 #include <chrono>
 #include <cmath>
 #include <cstring>
-#include <csignal>
 #include <cstdio>
 #include <filesystem>
 #include <map>
@@ -33,6 +33,7 @@
 #include "examples/progress.h"
 #include "examples/render_farm.h"
 #include "examples/resident_memory.h"
+#include "examples/signals.h"
 #include "raster/asset/framing.h"
 #include "raster/core/error.h"
 #include "raster/core/trace.h"
@@ -49,14 +50,6 @@ namespace tessera::cli {
 namespace {
 
 namespace fs = std::filesystem;
-
-// Set by SIGINT, read between frames: the render stops after the frame in hand. The default
-// action comes back at once, so a second Ctrl-C ends a frame that takes too long.
-volatile std::sig_atomic_t g_interrupted = 0;
-extern "C" void on_interrupt(int) {
-    g_interrupted = 1;
-    std::signal(SIGINT, SIG_DFL);
-}
 
 // Frames up to 8K (and anything within one 8192 x 8192 viewport) are rendered whole in memory
 // and written by the background FrameWriter; larger ones are rendered band by band and
@@ -218,8 +211,8 @@ private:
     Outcome render_in_bands(int f, const fs::path& path, render::FrameStats& st);
     Outcome render_in_memory(int f, const fs::path& path, render::FrameStats& st);
     void report(int f, const fs::path& path, const render::FrameStats& st);
-    // `interrupted`: Ctrl-C stopped the loop.
-    int finish(bool interrupted);
+    // `stopped_by`: the signal that stopped the loop, or 0.
+    int finish(int stopped_by);
     // A failed write names the first frame not yet on disk.
     int failed_write() const;
 
@@ -294,10 +287,11 @@ int FrameLoop::run(int skipped) {
         progress_ = std::make_unique<Progress>(loaded_.name, int64_t(frames_.size()), "frames");
     if (!o_.quiet && skipped > 0 && dist_.rank() == 0)
         std::fprintf(stderr, "resume: %d complete frame(s) skipped\n", skipped);
-    std::signal(SIGINT, on_interrupt);
+    // SIGINT, SIGTERM, SIGHUP: finish the frame in hand, then stop (signals.h).
+    const StopRequest stop;
     start_ = std::chrono::steady_clock::now();
     while (const std::optional<int> next = dist_.next_frame()) {
-        if (g_interrupted) break;
+        if (stop.signal()) break;
         const int f = *next;
         const fs::path path = plan_.pattern.path_for(f);
         if (!farm_.claim(path, plan_.width, plan_.height)) continue;
@@ -307,7 +301,7 @@ int FrameLoop::run(int skipped) {
         if (outcome == Outcome::stop) break;
         report(f, path, st);
     }
-    return finish(g_interrupted != 0);
+    return finish(stop.signal());
 }
 
 // Rendered band by band and streamed into the file (on rank 0 in tiles mode); the file is
@@ -397,7 +391,7 @@ void FrameLoop::report(int f, const fs::path& path, const render::FrameStats& st
 }
 
 // Waits for the writer and the other ranks, writes the trace, prints the summary.
-int FrameLoop::finish(bool interrupted) {
+int FrameLoop::finish(int stopped_by) {
     try {
         writer_.finish();
     } catch (const Error& e) {
@@ -405,7 +399,7 @@ int FrameLoop::finish(bool interrupted) {
         dist_.fail(failed_write(), e.what());
     }
     farm_.published(writer_.written());
-    if (progress_ && !interrupted) progress_->finish();
+    if (progress_ && !stopped_by) progress_->finish();
     progress_.reset();
     if (!dist_.finish()) return 1;  // rank 0 reports the failure (finish() throws there)
     if (!o_.trace.empty()) {
@@ -420,9 +414,10 @@ int FrameLoop::finish(bool interrupted) {
                      done_, plan_.width, plan_.height, elapsed, double(done_) / elapsed, median(times_.total),
                      median(times_.animate), median(times_.bake), median(times_.bvh), median(times_.visibility),
                      median(times_.tiles), peak_resident_mib());
-    if (interrupted) {
-        std::fprintf(stderr, "tessera: interrupted: %zu frame(s) written; rerun with --resume to continue\n", done_);
-        return 130;
+    if (stopped_by) {
+        std::fprintf(stderr, "tessera: interrupted by %s: %zu frame(s) written; rerun with --resume to continue\n",
+                     signal_name(stopped_by).c_str(), done_);
+        return 128 + stopped_by;  // as the shell reports a process the signal ended
     }
     if (!o_.quiet && farm_.held_elsewhere() > 0)
         std::fprintf(stderr, "claim: %d frame(s) claimed by other processes were left to them\n",

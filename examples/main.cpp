@@ -11,6 +11,7 @@
 #include <new>
 
 #include "examples/command.h"
+#include "examples/signals.h"
 #include "raster/core/error.h"
 
 namespace {
@@ -57,6 +58,7 @@ std::string one_line(std::string text) {
 
 int main(int argc, char** argv) {
     using namespace tessera::cli;
+    end_cleanly_on_signals();  // no command leaves a temporary behind on SIGTERM (signals.h)
     CLI::App app{"tessera: a tiled SIMD CPU rasterizer, an Embree ray tracer and procedural "
                  "generators, rendering the same scenes",
                  "tessera"};

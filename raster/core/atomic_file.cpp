@@ -8,6 +8,7 @@
 #include <cerrno>
 #include <cstdlib>
 #include <cstring>
+#include <iterator>
 #include <string>
 #include <system_error>
 
@@ -57,7 +58,41 @@ void remove_stale_temporaries(const fs::path& target, const fs::path& parent) {
     }
 }
 
+// The temporaries being written, for remove_unfinished_temporaries() in a signal handler:
+// fixed slots (no allocation, no lock), each claimed by its state. A handler unlinks only
+// slots whose name is complete (ready); a name it unlinks a moment after its rename finds
+// nothing, which is harmless.
+struct TemporarySlot {
+    enum : int { free = 0, filling = 1, ready = 2 };
+    std::atomic<int> state{free};
+    char path[4096] = {};
+};
+TemporarySlot g_temporaries[64];
+static_assert(std::atomic<int>::is_always_lock_free, "signal handlers need lock-free atomics");
+
+int register_temporary(const fs::path& path) {
+    const std::string& name = path.native();
+    if (name.size() >= sizeof(TemporarySlot::path)) return -1;
+    for (int i = 0; i < int(std::size(g_temporaries)); ++i) {
+        int expected = TemporarySlot::free;
+        if (!g_temporaries[i].state.compare_exchange_strong(expected, TemporarySlot::filling)) continue;
+        std::memcpy(g_temporaries[i].path, name.c_str(), name.size() + 1);
+        g_temporaries[i].state.store(TemporarySlot::ready, std::memory_order_release);
+        return i;
+    }
+    return -1;  // more than 64 at once: this one is not removed on a signal (--resume removes it)
+}
+
+void unregister_temporary(int slot) {
+    if (slot >= 0) g_temporaries[slot].state.store(TemporarySlot::free, std::memory_order_release);
+}
+
 }  // namespace
+
+void remove_unfinished_temporaries() {
+    for (TemporarySlot& slot : g_temporaries)
+        if (slot.state.load(std::memory_order_acquire) == TemporarySlot::ready) ::unlink(slot.path);
+}
 
 AtomicFile::AtomicFile(fs::path path) : path_(std::move(path)) {
     std::error_code ec;
@@ -70,15 +105,18 @@ AtomicFile::AtomicFile(fs::path path) : path_(std::move(path)) {
     if (!in_place_) remove_stale_temporaries(path_, parent);
     written_ = in_place_ ? path_ : temporary_beside(path_);
     const int flags = in_place_ ? O_WRONLY | O_CLOEXEC : O_WRONLY | O_CREAT | O_EXCL | O_CLOEXEC;
+    if (!in_place_) slot_ = register_temporary(written_);  // before it exists: a signal never misses it
     fd_ = ::open(written_.c_str(), flags, 0644);
     if (fd_ < 0) fail(std::strerror(errno));
 }
 
 AtomicFile::~AtomicFile() {
-    if (fd_ < 0) return;
-    ::close(fd_);
-    std::error_code ignored;
-    if (!in_place_) fs::remove(written_, ignored);
+    if (fd_ >= 0) {
+        ::close(fd_);
+        std::error_code ignored;
+        if (!in_place_) fs::remove(written_, ignored);
+    }
+    unregister_temporary(slot_);
 }
 
 void AtomicFile::fail(const std::string& why) {
@@ -88,6 +126,8 @@ void AtomicFile::fail(const std::string& why) {
         std::error_code ignored;
         if (!in_place_) fs::remove(written_, ignored);
     }
+    unregister_temporary(slot_);
+    slot_ = -1;
     throw Error("cannot write '" + path_.string() + "': " + why);
 }
 
@@ -126,6 +166,8 @@ void AtomicFile::commit() {
     if (in_place_) return;
     std::error_code ec;
     fs::rename(written_, path_, ec);
+    unregister_temporary(slot_);
+    slot_ = -1;
     if (ec) {
         std::error_code ignored;
         fs::remove(written_, ignored);

@@ -39,10 +39,16 @@ private:
 
     std::filesystem::path path_;     // the target
     std::filesystem::path written_;  // the temporary, or the target itself for a device
+    int slot_ = -1;                  // in the table of remove_unfinished_temporaries()
     bool in_place_ = false;
     int fd_ = -1;
     uint64_t end_ = 0;  // where the last write ended (devices: the only offset accepted)
 };
+
+// Removes the temporaries of every AtomicFile now open in this process, for a handler of a
+// signal that ends it (SIGTERM while a frame is written must not leave the temporary behind).
+// Async-signal-safe: unlink(2) on names kept ready in a fixed table (up to 64 open at once).
+void remove_unfinished_temporaries();
 
 // Throws tessera::Error ("cannot write 'PATH': REASON") and leaves no temporary behind.
 void write_file_atomically(const std::filesystem::path& path, std::span<const std::byte> bytes);
