@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 #include <unistd.h>
 
+#include <chrono>
 #include <filesystem>
 #include <fstream>
 #include <string>
@@ -84,6 +85,36 @@ TEST_F(ClaimTest, ExpiredClaimIsTakenOverOnlyWithPolicy) {
 TEST_F(ClaimTest, EmptyClaimBeingWrittenIsHeld) {
     write_claim("");
     EXPECT_EQ(try_claim(frame, {true, 1.0}), ClaimResult::held);
+}
+
+// What a process killed between creating and writing its claim leaves (empty), or garbage,
+// or a folder in the claim's place: judged by its age, never held for ever.
+TEST_F(ClaimTest, UnreadableClaimsAreTakenOverByTheirAge) {
+    const auto age = [&](double seconds) {
+        fs::last_write_time(claim_path(frame), fs::file_time_type::clock::now() -
+                                                   std::chrono::duration_cast<fs::file_time_type::duration>(
+                                                       std::chrono::duration<double>(seconds)));
+    };
+    for (const std::string& text : {std::string(), std::string("\x01garbage"), std::string("host only")}) {
+        write_claim(text);
+        age(30.0);
+        EXPECT_EQ(try_claim(frame, {false, 0.0}), ClaimResult::held) << "without --resume: respected";
+        EXPECT_EQ(try_claim(frame, {true, 0.0}), ClaimResult::held) << "younger than a minute";
+        EXPECT_EQ(try_claim(frame, {true, 3600.0}), ClaimResult::held) << "younger than --claim-timeout";
+        EXPECT_EQ(try_claim(frame, {true, 10.0}), ClaimResult::taken_over) << "older than --claim-timeout";
+        EXPECT_TRUE(ClaimOwner::parse(read_claim())) << "now ours";
+        release_claim(frame);
+        write_claim(text);
+        age(kUnreadableClaimAge + 5.0);
+        EXPECT_EQ(try_claim(frame, {true, 0.0}), ClaimResult::taken_over) << "older than a minute";
+        release_claim(frame);
+    }
+    fs::create_directory(claim_path(frame));
+    age(kUnreadableClaimAge + 5.0);
+    EXPECT_EQ(try_claim(frame, {true, 0.0}), ClaimResult::taken_over);
+    EXPECT_TRUE(fs::is_regular_file(claim_path(frame)));
+    release_claim(frame);
+    EXPECT_TRUE(fs::is_empty(dir)) << "the folder that stood in the claim's place is gone";
 }
 
 TEST_F(ClaimTest, UnwritableFolderThrows) {

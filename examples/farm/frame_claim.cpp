@@ -2,6 +2,7 @@
 
 #include <fcntl.h>
 #include <signal.h>
+#include <sys/stat.h>
 #include <unistd.h>
 
 #include <cerrno>
@@ -9,6 +10,7 @@
 #include <ctime>
 #include <fstream>
 #include <sstream>
+#include <system_error>
 
 #include "raster/core/error.h"
 
@@ -41,6 +43,11 @@ bool claim_is_stale(const ClaimOwner& owner, const ClaimOwner& self, const Claim
     return policy.stale_after_s > 0.0 && double(self.time - owner.time) > policy.stale_after_s;
 }
 
+bool unreadable_claim_is_stale(int64_t written, int64_t now, const ClaimPolicy& policy) {
+    if (!policy.take_over_stale) return false;
+    return double(now - written) > (policy.stale_after_s > 0.0 ? policy.stale_after_s : kUnreadableClaimAge);
+}
+
 fs::path claim_path(const fs::path& frame) {
     std::string name = ".";  // appended piecewise: GCC 12 misreports "." + string (-Wrestrict)
     name += frame.filename().string();
@@ -56,6 +63,26 @@ std::string read_small_file(const fs::path& p) {
     std::ostringstream s;
     s << in.rdbuf();
     return in ? s.str() : std::string();
+}
+
+// A claim as found: its text and when it was last written (0 when it is gone).
+struct SeenClaim {
+    std::string text;
+    int64_t written = 0;
+    bool operator==(const SeenClaim&) const = default;
+};
+
+SeenClaim look_at(const fs::path& claim) {
+    struct stat st {};
+    if (::stat(claim.c_str(), &st) != 0) return {};
+    return {S_ISREG(st.st_mode) ? read_small_file(claim) : std::string(), int64_t(st.st_mtime)};
+}
+
+bool is_stale(const SeenClaim& seen, const ClaimOwner& self, const ClaimPolicy& policy) {
+    if (seen.written == 0) return false;  // gone meanwhile: the next create decides
+    if (const std::optional<ClaimOwner> owner = ClaimOwner::parse(seen.text))
+        return claim_is_stale(*owner, self, policy);
+    return unreadable_claim_is_stale(seen.written, self.time, policy);
 }
 
 [[noreturn]] void fail(const fs::path& p, const char* what) {
@@ -89,22 +116,23 @@ ClaimResult try_claim(const fs::path& frame, const ClaimPolicy& policy) {
     // starts over with a fresh exclusive create.
     for (int round = 0; round < 4; ++round) {
         if (create_claim(claim, self)) return round == 0 ? ClaimResult::claimed : ClaimResult::taken_over;
-        const std::string seen = read_small_file(claim);
-        const std::optional<ClaimOwner> owner = ClaimOwner::parse(seen);
-        if (!owner || !claim_is_stale(*owner, self, policy)) return ClaimResult::held;
+        const SeenClaim seen = look_at(claim);
+        if (seen.written == 0) continue;  // released meanwhile: create again
+        if (!is_stale(seen, self, policy)) return ClaimResult::held;
         const fs::path moved = claim.string() + ".stale." + self.host + "." + std::to_string(self.pid);
         if (std::rename(claim.c_str(), moved.c_str()) != 0) {
             if (errno == ENOENT) continue;  // someone else broke it first
             fail(claim, std::strerror(errno));
         }
-        if (read_small_file(moved) != seen) {
+        std::error_code ignored;
+        if (look_at(moved) != seen) {
             // Between reading and renaming, another process broke the stale claim and made
             // its own, which we just moved: give it back (link fails if a third one exists).
             (void)link(moved.c_str(), claim.c_str());
-            unlink(moved.c_str());
+            fs::remove(moved, ignored);
             return ClaimResult::held;
         }
-        unlink(moved.c_str());
+        fs::remove(moved, ignored);  // a file, or an empty folder in the claim's place
     }
     return ClaimResult::held;
 }

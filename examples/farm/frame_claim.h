@@ -40,8 +40,18 @@ struct ClaimPolicy {
     double stale_after_s = 0.0;
 };
 
+// A claim nobody can read (empty, garbage, a folder) names no owner: its writer died between
+// creating and writing it, a few microseconds, or it is not a claim. It is judged by the age
+// of the file alone: stale when older than stale_after_s, or, with no such age given, than
+// this (so that a farm without --claim-timeout does not wait for it for ever).
+inline constexpr double kUnreadableClaimAge = 60.0;
+
 // Whether `owner` no longer holds its claim under `policy`, seen from `self` at `self.time`.
 bool claim_is_stale(const ClaimOwner& owner, const ClaimOwner& self, const ClaimPolicy& policy);
+
+// Whether an unreadable claim last written at `written` (seconds since the epoch) is stale,
+// seen at `now` (see kUnreadableClaimAge).
+bool unreadable_claim_is_stale(int64_t written, int64_t now, const ClaimPolicy& policy);
 
 // The claim file of a frame: ".NAME.claim" in the frame's directory (hidden, like the
 // atomic writer's temporaries).
