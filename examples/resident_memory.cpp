@@ -2,6 +2,7 @@
 
 #include <malloc.h>
 
+#include <cstddef>
 #include <fstream>
 #include <string>
 
@@ -18,7 +19,9 @@
 #endif
 #endif
 #ifdef TESSERA_SANITIZER_ALLOCATOR
-#include <sanitizer/allocator_interface.h>
+// Declared here rather than through <sanitizer/allocator_interface.h>, which clang ships and
+// GCC does not; both compilers' ASan and TSan runtimes export the function.
+extern "C" size_t __sanitizer_get_current_allocated_bytes();
 #endif
 
 namespace tessera::cli {
