@@ -4,8 +4,6 @@
 #include <cctype>
 #include <string>
 
-#include <tbb/parallel_for.h>
-
 #include "raster/core/atomic_file.h"
 #include "raster/core/color_space.h"
 #include "raster/core/error.h"
@@ -36,14 +34,11 @@ std::string lower_extension(const std::filesystem::path& path) {
 }  // namespace
 
 std::vector<uint8_t> encode_srgb8(const Frame& frame) {
+    // One thread: a table lookup per value (a few ms for 1080p) is not worth a parallel loop
+    // here, and this runs on the background writers, whose synchronisation ThreadSanitizer
+    // checks (make tsan); oneTBB's uninstrumented workers would show as races there.
     std::vector<uint8_t> out(frame.pixels.size() * 4);
-    // Rows of pixels in parallel: each value is encoded on its own, so the split does not
-    // change a byte.
-    constexpr size_t kChunk = 16384;
-    tbb::parallel_for(size_t(0), (frame.pixels.size() + kChunk - 1) / kChunk, [&](size_t c) {
-        const size_t first = c * kChunk, n = std::min(kChunk, frame.pixels.size() - first);
-        encode_srgb8(frame.pixels.data() + first, n, out.data() + 4 * first);
-    });
+    encode_srgb8(frame.pixels.data(), frame.pixels.size(), out.data());
     return out;
 }
 std::vector<uint16_t> encode_srgb16(const Frame& frame) { return encode<uint16_t>(frame, 65535.0f); }
