@@ -12,6 +12,7 @@ FUZZ_SEED ?= 0
 # is not built with -fsanitize=thread, so TSan cannot see the synchronisation inside it
 # (task spawn, waits, its small-object pool) and reports every parallel_for as a race.
 # Checking them needs oneTBB built from source with TSan (see README, "Sanitizers").
+# The tsan preset builds only these tests (TESSERA_THREAD_TESTS_ONLY) and the layers they use.
 TSAN_TESTS ?= FrameWriter|FrameStream
 
 .PHONY: all deps build test demo bench bench-report peer sanitize tsan fuzz fuzz-run clean
