@@ -13,8 +13,8 @@ info() { oiiotool --info -v "$1" 2>&1; }
 source "$(dirname "$0")/shell/expect_error.sh"
 
 # Wider than a viewport: one band of two regions (8192 + 64 columns).
-render --scene snakes --size 8256x64 --frames 2 --threads 1 --out "$dir/wide1.png" || fail "wide render exited $?"
-render --scene snakes --size 8256x64 --frames 2 --threads 2 --out "$dir/wide2.png" || fail "wide render 2 threads exited $?"
+render --scene toon --shadows rays --size 8256x64 --frames 2 --threads 1 --out "$dir/wide1.png" || fail "wide render exited $?"
+render --scene toon --shadows rays --size 8256x64 --frames 2 --threads 2 --out "$dir/wide2.png" || fail "wide render 2 threads exited $?"
 info "$dir/wide1.png" | grep -q "8256 x   64" || fail "wide PNG size: $(info "$dir/wide1.png" | head -2)"
 cmp -s "$dir/wide1.png" "$dir/wide2.png" || fail "streamed frame differs between 1 and 2 threads"
 
