@@ -30,6 +30,7 @@ test: build
 	ctest --preset $(PRESET) -j $(JOBS)
 
 demo: build
+	bash scripts/install-deps.sh demo
 	bash scripts/demo.sh
 
 bench: build

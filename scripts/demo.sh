@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
 # `make demo`: renders three seconds of the default `snakes` scene into out/ (PNG frames at
 # 854x480, 24 fps, shadow rays) and encodes them into out/snakes.mp4 with ffmpeg (installed by
-# scripts/packages.txt), then prints where both are.
+# scripts/packages-demo.txt), then prints where both are.
 # Environment: DEMO_SIZE, DEMO_FRAMES override the size and the frame range (A:B).
 set -euo pipefail
 root=$(cd "$(dirname "$0")/.." && pwd)
@@ -10,7 +10,7 @@ size=${DEMO_SIZE:-854x480}
 frames=${DEMO_FRAMES:-1:72}
 out=$root/out
 mkdir -p "$out"
-command -v ffmpeg >/dev/null 2>&1 || { echo "demo: ffmpeg is missing (make deps installs it)" >&2; exit 1; }
+command -v ffmpeg >/dev/null 2>&1 || { echo "demo: ffmpeg is missing (make demo installs it)" >&2; exit 1; }
 "$bin/tessera" render --scene snakes --size "$size" --frames "$frames" --fps 24 \
   --out "$out/snakes_####.png" --stats
 first=${frames%%:*}
