@@ -19,6 +19,7 @@
 #include "raster/io/image_io.h"
 #include "raster/pipeline/rasterizer.h"
 #include "raster/shade/reference_shading.h"
+#include "raster/shade/depth_view.h"
 #include "raster/shade/stamp_shading.h"
 #include "raster/io/visibility_io.h"
 #include "raster/output/frame_encoding.h"
@@ -144,6 +145,8 @@ int run(const Options& o) {
         frame_ms.push_back(std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count());
     }
 
+    // The tile pass wrote grey = window depth; the picture maps the visible distances instead.
+    if (shade == shade::ShadeMode::depth) shade::depth_view(visibility, camera, rgb8);
     if (!o.out_color.empty())
         io::write_image(o.out_color, io::ImageView{width, height, 3, io::PixelType::u8, rgb8.data(), /*srgb=*/true});
     if (!o.out_id.empty()) io::write_tsid(o.out_id, visibility);

@@ -12,7 +12,8 @@
 //   clamped to [0, 1] and quantised to 8 bits as round(c*255), no sRGB encoding.
 //
 // Background (no triangle): black. id: a hash colour per triangle id; depth: grey = window
-// depth; normal: N*0.5 + 0.5 (interpolated or face normal, not flipped).
+// depth (the command shows depth_view.h's mapping of the visible distances instead);
+// normal: N*0.5 + 0.5 (interpolated or face normal, not flipped).
 #pragma once
 #include <algorithm>
 #include <cmath>
