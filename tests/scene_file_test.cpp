@@ -132,6 +132,24 @@ TEST(SceneFile, ParametersTheModelDoesNotUseAreWarnings) {
     EXPECT_EQ(warnings[0], "x.json: /materials/cel: material parameter 'ks' is not used by the toon model; ignored");
 }
 
+// A diffuse texture is an albedo map: it colours the ambient term too unless the material says
+// otherwise, so faces only the ambient light reaches keep their texture.
+TEST(SceneFile, DiffuseTexturesColourTheAmbientTermByDefault) {
+    std::vector<std::string> warnings;
+    const scene_file::SceneSpec s = scene_file::parse_scene(R"({
+        "textures": {"skin": {"type": "reaction_diffusion", "size": 16, "steps": 1}},
+        "materials": {"albedo": {"diffuse_texture": "skin"},
+                      "flat": {"diffuse_texture": "skin", "ambient_texture": false},
+                      "plain": {"ambient_texture": true}},
+        "objects": [{"type": "sphere", "material": "albedo"}]})",
+        "x.json", warnings);
+    ASSERT_EQ(s.materials.size(), 3u);
+    EXPECT_TRUE(s.materials[0].material.textured_ambient);
+    EXPECT_FALSE(s.materials[1].material.textured_ambient);
+    ASSERT_EQ(warnings.size(), 1u);
+    EXPECT_EQ(warnings[0], "x.json: /materials/plain: 'ambient_texture' without a 'diffuse_texture' has no effect");
+}
+
 TEST(SceneFile, MissingFileAndMalformedJson) {
     std::vector<std::string> warnings;
     try {

@@ -215,6 +215,11 @@ MaterialSpec parse_material(const std::string& name, const JsonNode& n) {
         if (const auto v = n.find(key)) params.push_back({key, {}, v->as_string()});
     m.diffuse_texture = n.string("diffuse_texture", "");
     m.normal_texture = n.string("normal_texture", "");
+    // A diffuse texture is an albedo map: it colours the ambient term as well as the diffuse
+    // one, or faces that only the ambient light reaches go flat.
+    m.material.textured_ambient = n.boolean("ambient_texture", true);
+    if (n.find("ambient_texture") && m.diffuse_texture.empty())
+        n.warn("'ambient_texture' without a 'diffuse_texture' has no effect");
     try {
         for (const std::string& w : scene::set_material_parameters(m.material, params)) n.warn(w);
     } catch (const std::invalid_argument& e) {
