@@ -37,6 +37,7 @@
 #include "raster/asset/framing.h"
 #include "raster/core/error.h"
 #include "raster/core/trace.h"
+#include "raster/io/image_completeness.h"
 #include "raster/io/image_io.h"
 #include "raster/output/frame_encoding.h"
 #include "raster/output/frame_stream.h"

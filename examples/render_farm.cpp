@@ -3,7 +3,7 @@
 #include <cmath>
 
 #include "examples/command.h"
-#include "raster/io/image_io.h"
+#include "raster/io/image_completeness.h"
 
 namespace tessera::cli {
 

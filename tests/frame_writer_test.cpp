@@ -5,6 +5,7 @@
 #include <filesystem>
 
 #include "raster/core/error.h"
+#include "raster/io/image_completeness.h"
 
 namespace fs = std::filesystem;
 using namespace tessera;

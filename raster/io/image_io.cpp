@@ -45,17 +45,6 @@ bool image_format_supported(const fs::path& path) {
     return true;
 }
 
-bool image_is_complete(const fs::path& path, int width, int height) {
-    std::error_code ec;
-    if (!fs::is_regular_file(path, ec)) return false;
-    auto in = OIIO::ImageInput::open(path.string());
-    if (!in) {
-        (void)OIIO::geterror();
-        return false;
-    }
-    return in->spec().width == width && in->spec().height == height;
-}
-
 void write_image(const fs::path& path, const ImageView& image) {
     if (image.width <= 0 || image.height <= 0 || image.channels <= 0 || !image.pixels)
         throw Error("cannot write " + describe(path) + ": the image is empty");

@@ -56,10 +56,6 @@ FloatImage read_image(const std::filesystem::path& path);
 // tried first.
 FloatImage read_image_memory(std::span<const uint8_t> bytes, const std::string& name, const std::string& format);
 
-// True when `path` is an image OpenImageIO can open whose header says width x height: how
-// --resume recognises a finished frame (writes are atomic, so a present file is complete).
-bool image_is_complete(const std::filesystem::path& path, int width, int height);
-
 // True when OpenImageIO has a writer for the extension of `path` (".png", ".exr", ...).
 bool image_format_supported(const std::filesystem::path& path);
 
