@@ -19,6 +19,7 @@
 #include <vector>
 
 #include "examples/command.h"
+#include "examples/frame_sequence.h"
 #include "examples/progress.h"
 #include "procedural/erosion.h"
 #include "procedural/heightfield.h"
@@ -27,9 +28,9 @@
 #include "procedural/rd_initial.h"
 #include "procedural/rd_presets.h"
 #include "procedural/reaction_diffusion.h"
+#include "raster/core/atomic_file.h"
 #include "raster/core/error.h"
 #include "raster/io/image_io.h"
-#include "examples/frame_sequence.h"
 
 namespace tessera::cli {
 namespace {
@@ -77,11 +78,13 @@ bool float_format(const fs::path& path) {
     return ext == ".exr" || ext == ".tif" || ext == ".tiff" || ext == ".hdr";
 }
 
+// Before the work: a missing folder is found now, not after an hour of simulation.
 void check_output(const std::string& out) {
     if (out.empty()) throw UsageError("--out FILE is required");
     if (!io::image_format_supported(out))
         throw UsageError("cannot write '" + out + "': no image format for extension '" +
                          fs::path(out).extension().string() + "' (use .png, .exr or .tif)");
+    check_writable(FramePattern(out).path_for(0));  // a frame pattern's folder, or the file's
 }
 
 // Refuses sizes whose working set exceeds the machine's memory, before allocating anything.

@@ -13,6 +13,7 @@
 #include <vector>
 
 #include "examples/command.h"
+#include "raster/core/atomic_file.h"
 #include "raster/march/march_scene.h"
 #include "raster/output/frame_encoding.h"
 #include "raster/pipeline/rasterizer.h"
@@ -105,6 +106,7 @@ Run define_march(CLI::App& root) {
         s.fog.base_height = o->fog_base;
         if (!io::image_format_supported(o->output))
             throw UsageError("--output: no image writer for '" + o->output + "'");
+        check_writable(o->output);  // before the render, not after it
 
         if (!o->cube_map.empty()) {
             s.background.kind = scene::Background::Kind::cube_map;

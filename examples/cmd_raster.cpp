@@ -13,6 +13,7 @@
 
 #include "examples/command.h"
 #include "examples/model_view.h"
+#include "raster/core/atomic_file.h"
 #include "raster/embree/ray_cast.h"
 #include "raster/embree/scene.h"
 #include "raster/embree/tile_passes.h"
@@ -58,6 +59,7 @@ int run_material(const Options& o, int width, int height) {
         throw UsageError("--out-id, --out-depth, --cull and --tile go with --shade id|depth|normal|phong");
     if (!o.out_color.empty() && !io::image_format_supported(o.out_color))
         throw UsageError("--out-color: no image writer for '" + o.out_color + "'");
+    if (!o.out_color.empty()) check_writable(o.out_color);  // before the work
     const pipeline::Viewport viewport(width, height);  // checks the size limits
     ModelView view = load_model_view(o.mesh, o.camera, width, height);
     const auto threads = limit_threads(o.threads);
@@ -93,9 +95,10 @@ int run(const Options& o) {
     if (o.shadows != "none") throw UsageError("--shadows goes with --shade material");
     const pipeline::CullMode cull = parse_cull(o.cull);
     const shade::ShadeMode shade = shade::parse_shade_mode(o.shade);
-    for (const std::string* path : {&o.out_color})
-        if (!path->empty() && !io::image_format_supported(*path))
-            throw UsageError("--out-color: no image writer for '" + *path + "'");
+    if (!o.out_color.empty() && !io::image_format_supported(o.out_color))
+        throw UsageError("--out-color: no image writer for '" + o.out_color + "'");
+    for (const std::string* path : {&o.out_color, &o.out_id, &o.out_depth})  // before the work
+        if (!path->empty()) check_writable(*path);
     const pipeline::Viewport viewport(width, height);  // checks the size limits
 
     const bool raytrace = o.renderer == "raytrace";

@@ -9,11 +9,13 @@
 // frames and --resume skips them. Frames beyond one 8192x8192 pass are rendered band by band
 // and streamed into their file (FrameRenderer::render_bands, FrameStream), so memory holds a
 // band, not the frame. Ctrl-C, SIGTERM or SIGHUP finishes the frame in hand, waits for the
-// writer and exits 128 + the signal's number (130, 143, 129).
-// Exit codes as every command: 2 for bad flags, 1 for a failed run.
+// writer and exits 128 + the signal's number (130, 143, 129). Everything the flags and the
+// scene say is checked before the first frame: the output folders, the trace
+// file. Exit codes as every command: 2 for bad flags, 1 for a failed run.
 #include <unistd.h>
 
 #include <algorithm>
+#include <charconv>
 #include <atomic>
 #include <chrono>
 #include <cmath>
@@ -35,6 +37,7 @@
 #include "examples/resident_memory.h"
 #include "examples/signals.h"
 #include "raster/asset/framing.h"
+#include "raster/core/atomic_file.h"
 #include "raster/core/error.h"
 #include "raster/core/trace.h"
 #include "raster/io/image_completeness.h"
@@ -59,22 +62,48 @@ constexpr int kMaxSide = 65536;
 
 struct Options {
     std::string scene = "snakes";
-    std::string size, frames, out, renderer = "raster", shadows, shard = "0/1", trace, png = "fast";
-    float fps = 0.0f;
+    std::string size, frames, renderer = "raster", shadows, shard = "0/1", png = "fast";
+    std::optional<std::string> out, trace, fps;  // given (perhaps empty) or not
     int threads = 0;
     bool resume = false, stats = false, quiet = false;
     FarmOptions farm;  // --claim, --checkpoint-every, --distribute (render_farm.h)
 };
 
-// Fails before any rendering when the output directory cannot take files.
-void prepare_output_directory(const fs::path& first_file) {
-    const fs::path dir = first_file.parent_path().empty() ? fs::path(".") : first_file.parent_path();
-    std::error_code ec;
-    fs::create_directories(dir, ec);
-    if (!fs::is_directory(dir))
-        throw Error("cannot write frames to '" + dir.string() + "': " + (ec ? ec.message() : "not a directory"));
-    if (access(dir.c_str(), W_OK) != 0)
-        throw Error("cannot write frames to '" + dir.string() + "': permission denied");
+// The folders of `frames` (one for all, or one per frame when the pattern's placeholder is
+// in a folder's name, "out/####/beauty.png"), made before any rendering: a folder that
+// cannot be made or cannot take files fails the run now, not after frames were written.
+void prepare_output_folders(const FramePattern& pattern, const std::vector<int>& frames) {
+    std::set<fs::path> folders;
+    for (const int f : frames) {
+        const fs::path file = pattern.path_for(f);
+        folders.insert(file.parent_path().empty() ? fs::path(".") : file.parent_path());
+    }
+    // All checked before any is made: a file in the way of the last one leaves no folders.
+    for (const fs::path& dir : folders) {
+        fs::path existing = dir;  // the nearest part of it that exists ("out" of "out/a/b": ".")
+        std::error_code ec;
+        while (!fs::exists(existing, ec) && existing != existing.parent_path())
+            existing = existing.has_parent_path() ? existing.parent_path() : fs::path(".");
+        if (fs::exists(existing, ec) && !fs::is_directory(existing, ec))
+            throw Error("cannot write frames to '" + dir.string() + "': '" + existing.string() + "' is not a directory");
+        if (access(existing.c_str(), W_OK) != 0)
+            throw Error("cannot write frames to '" + dir.string() + "': permission denied");
+    }
+    for (const fs::path& dir : folders) {
+        std::error_code ec;
+        fs::create_directories(dir, ec);
+        if (!fs::is_directory(dir))
+            throw Error("cannot write frames to '" + dir.string() + "': " + (ec ? ec.message() : "not a directory"));
+    }
+}
+
+// --fps: a positive, finite number (no silent fallback to the scene's for 0, -5 or nan).
+float parse_fps(const std::string& text) {
+    float fps = 0.0f;
+    const auto [end, ec] = std::from_chars(text.data(), text.data() + text.size(), fps);
+    if (ec != std::errc() || end != text.data() + text.size() || !(fps > 0.0f) || !std::isfinite(fps))
+        throw UsageError("--fps expects a positive number of frames per second, got '" + text + "'");
+    return fps;
 }
 
 // A run killed mid-write (SIGKILL, power loss) leaves its temporary ".NAME.tmpPID_N" beside
@@ -137,15 +166,21 @@ RenderPlan plan_render(const Options& o, const LoadedScene& scene) {
     plan.range = FrameRange{spec.animation.first, spec.animation.last};
     if (!o.frames.empty()) plan.range = parse_frame_range(o.frames);
     plan.shard = parse_shard(o.shard);
-    plan.fps = o.fps > 0.0f ? o.fps : spec.animation.fps;
-    if (!(plan.fps > 0.0f) || !std::isfinite(plan.fps)) throw UsageError("--fps must be positive");
-    plan.pattern = FramePattern(o.out.empty() ? "out/" + scene.name + "_####.png" : o.out);
+    plan.fps = o.fps ? parse_fps(*o.fps) : spec.animation.fps;
+    if (o.out && o.out->empty()) throw UsageError("--out: expected an output pattern, got ''");
+    plan.pattern = FramePattern(o.out ? *o.out : "out/" + scene.name + "_####.png");
     const FramePattern& pattern = plan.pattern;
     if (!pattern.has_placeholder() && plan.range.count() > 1)
         throw UsageError("--out '" + pattern.text() + "' has no #### or %04d, but " + std::to_string(plan.range.count()) +
                          " frames would overwrite it");
+    if (pattern.path_for(plan.range.first).filename().empty() || pattern.text().back() == '/')
+        throw UsageError("--out '" + pattern.text() + "': no file name (use e.g. DIR/frame_####.png)");
     if (!io::image_format_supported(pattern.path_for(plan.range.first)))
         throw UsageError("--out '" + pattern.text() + "': no image format for that extension (use .png, .exr or .tif)");
+    if (o.trace) {  // checked now, not after the frames are rendered
+        if (o.trace->empty()) throw UsageError("--trace: expected a file name, got ''");
+        check_writable(*o.trace);
+    }
     plan.renderer = render::parse_renderer(o.renderer);
     plan.shadows = render::parse_shadow_mode(o.shadows.empty() ? spec.shadows : o.shadows);
     plan.mode = parse_distribute(o.farm.distribute);
@@ -250,7 +285,7 @@ FrameLoop::FrameLoop(const Options& o, const LoadedScene& scene, const RenderPla
       distribution_(make_distribution(plan.mode, std::move(frames))),
       dist_(*distribution_),
       scene_([&] {
-          if (!o.trace.empty()) trace_.activate();
+          if (o.trace) trace_.activate();
           TraceScope t("build scene");
           std::vector<std::string> warnings;
           render::AnimatedScene built = scene_file::build_scene(scene.spec, &warnings);
@@ -263,7 +298,7 @@ FrameLoop::FrameLoop(const Options& o, const LoadedScene& scene, const RenderPla
       }()),
       frame_renderer_(scene_, plan.width, plan.height, plan.renderer, plan.shadows),
       writer_(2, output::FileSettings{output::parse_png_compression(o.png)}),
-      farm_(o.farm, o.resume, scene_, scene.spec.textures, scene.name, plan.pattern.path_for(plan.range.first)),
+      farm_(o.farm, o.resume, scene_, scene.spec.textures, scene.name, plan.pattern.fixed_directory()),
       banded_(render::needs_bands(plan.width, plan.height)),
       layout_(render::band_layout(plan.width, plan.height)),
       frames_(dist_.pending()),
@@ -403,9 +438,9 @@ int FrameLoop::finish(int stopped_by) {
     if (progress_ && !stopped_by) progress_->finish();
     progress_.reset();
     if (!dist_.finish()) return 1;  // rank 0 reports the failure (finish() throws there)
-    if (!o_.trace.empty()) {
+    if (o_.trace) {
         trace_.deactivate();
-        trace_.write(o_.trace);
+        trace_.write(*o_.trace);
     }
     const double elapsed = std::chrono::duration<double>(std::chrono::steady_clock::now() - start_).count();
     if (o_.stats && done_ > 0)
@@ -432,8 +467,8 @@ int run(const Options& o, const std::string& executable) {
     const auto guard = limit_threads(o.threads);
     const LoadedScene scene = load_scene(o.scene, executable);
     const RenderPlan plan = plan_render(o, scene);
-    prepare_output_directory(plan.pattern.path_for(plan.range.first));
     PendingFrames pending = pending_frames(o, plan);
+    prepare_output_folders(plan.pattern, pending.frames);
     FrameLoop loop(o, scene, plan, std::move(pending.frames));
     return loop.run(pending.skipped);
 }

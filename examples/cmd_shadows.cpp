@@ -10,9 +10,11 @@
 #include <vector>
 
 #include "examples/command.h"
+#include "raster/core/atomic_file.h"
 #include "raster/embree/ray_cast.h"
 #include "raster/embree/scene.h"
 #include "raster/embree/shadow_rays.h"
+#include "raster/io/image_io.h"
 #include "raster/pipeline/rasterizer.h"
 #include "raster/shadow/mask_compare.h"
 #include "raster/shadow/shadow_map.h"
@@ -47,6 +49,10 @@ std::vector<glm::vec3> scene_lights(const workloads::SphereGridScene& grid, int 
 int run(const Options& o) {
     int width = 0, height = 0;
     parse_size(o.size, "--size", width, height);
+    if (!o.diff.empty()) {  // checked before the work, not after it
+        if (!io::image_format_supported(o.diff)) throw UsageError("--diff: no image writer for '" + o.diff + "'");
+        check_writable(o.diff);
+    }
     const auto cap = limit_threads(o.threads);
     using clock = std::chrono::steady_clock;
 

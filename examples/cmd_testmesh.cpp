@@ -37,6 +37,8 @@ std::string camera_text(const Camera& c) {
 int run(const Options& o) {
     int width = 0, height = 0;
     parse_size(o.size, "--size", width, height);
+    check_writable(o.out);  // both outputs before the mesh: neither is written if one cannot be
+    if (!o.camera_out.empty()) check_writable(o.camera_out);
     Camera camera;
     camera.aspect = float(width) / float(height);
     Mesh mesh;

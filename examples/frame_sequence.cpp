@@ -83,6 +83,14 @@ FramePattern::FramePattern(std::string pattern) : text_(std::move(pattern)) {
     }
 }
 
+std::filesystem::path FramePattern::fixed_directory() const {
+    // The folders before the placeholder's component (before the file name, without one).
+    const std::string& before = width_ < 0 ? text_ : prefix_;
+    const size_t slash = before.rfind('/');
+    if (slash == std::string::npos) return ".";
+    return slash == 0 ? std::string("/") : before.substr(0, slash);
+}
+
 std::filesystem::path FramePattern::path_for(int frame) const {
     if (width_ < 0) return text_;
     std::string digits = std::to_string(frame);

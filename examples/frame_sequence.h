@@ -41,6 +41,9 @@ public:
     bool has_placeholder() const { return width_ >= 0; }
     std::filesystem::path path_for(int frame) const;
     const std::string& text() const { return text_; }
+    // The deepest folder of the pattern without the placeholder, where files the frames share
+    // go: "out" for "out/f_####.png" and for "out/####/beauty.png", "." for "f_####.png".
+    std::filesystem::path fixed_directory() const;
 
 private:
     std::string text_;

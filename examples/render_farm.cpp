@@ -27,7 +27,7 @@ void add_farm_options(CLI::App& cmd, FarmOptions& o) {
 }
 
 FarmRun::FarmRun(const FarmOptions& o, bool resume, render::AnimatedScene& scene, std::span<const scene_file::TextureSpec> textures,
-                 const std::string& scene_name, const fs::path& first_frame)
+                 const std::string& scene_name, const fs::path& output_folder)
     : claims_(o.claim), scene_(scene), simulation_(textures) {
     if (!(o.claim_timeout >= 0.0) || !std::isfinite(o.claim_timeout))
         throw UsageError("--claim-timeout must be a non-negative number of seconds");
@@ -35,9 +35,7 @@ FarmRun::FarmRun(const FarmOptions& o, bool resume, render::AnimatedScene& scene
     policy_.take_over_stale = resume;
     policy_.stale_after_s = o.claim_timeout;
     if (!simulation_.empty()) {
-        const fs::path dir = !o.checkpoints.empty() ? fs::path(o.checkpoints)
-                             : first_frame.parent_path().empty() ? fs::path(".tessera-sim")
-                                                                 : first_frame.parent_path() / ".tessera-sim";
+        const fs::path dir = !o.checkpoints.empty() ? fs::path(o.checkpoints) : output_folder / ".tessera-sim";
         store_ = std::make_unique<farm::CheckpointStore>(dir, scene_name, simulation_.fingerprint(), o.checkpoint_every);
     }
 }

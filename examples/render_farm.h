@@ -36,10 +36,10 @@ void add_farm_options(CLI::App& command, FarmOptions& options);
 class FarmRun {
 public:
     // Throws UsageError for bad values. `textures`: the specs `scene`'s textures were built
-    // from, in order (the growing ones are simulated). `first_frame` places the default
-    // checkpoint folder.
+    // from, in order (the growing ones are simulated). The default checkpoint folder is
+    // OUTPUT_FOLDER/.tessera-sim.
     FarmRun(const FarmOptions& options, bool resume, render::AnimatedScene& scene, std::span<const scene_file::TextureSpec> textures,
-            const std::string& scene_name, const std::filesystem::path& first_frame);
+            const std::string& scene_name, const std::filesystem::path& output_folder);
     ~FarmRun();  // hands back claims of frames never written (so others need not wait)
 
     // Whether this process renders `frame` now: true without --claim; with it, true only if

@@ -175,6 +175,19 @@ void AtomicFile::commit() {
     }
 }
 
+void check_writable(const fs::path& path) {
+    const auto fail = [&](const std::string& why) { throw Error("cannot write '" + path.string() + "': " + why); };
+    std::error_code ec;
+    const auto status = fs::status(path, ec);
+    if (fs::is_directory(status)) fail("it is a directory");
+    // As AtomicFile: a device or FIFO is written in place, anything else through a temporary
+    // beside it, in its folder.
+    const bool in_place = fs::exists(status) && !fs::is_regular_file(status);
+    const fs::path parent = path.has_parent_path() ? path.parent_path() : fs::path(".");
+    if (!in_place && !fs::is_directory(parent, ec)) fail("directory '" + parent.string() + "' does not exist");
+    if (::access((in_place ? path : parent).c_str(), W_OK) != 0) fail(std::strerror(errno));
+}
+
 void write_file_atomically(const fs::path& path, std::span<const std::byte> bytes) {
     AtomicFile file(path);
     file.write_at(0, bytes);

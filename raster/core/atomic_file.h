@@ -50,6 +50,11 @@ private:
 // Async-signal-safe: unlink(2) on names kept ready in a fixed table (up to 64 open at once).
 void remove_unfinished_temporaries();
 
+// Throws the tessera::Error that writing `path` would ("cannot write 'PATH': REASON": a
+// directory in the way, a missing or read-only folder), for a command to check its outputs
+// before the work that produces them. Writes nothing.
+void check_writable(const std::filesystem::path& path);
+
 // Throws tessera::Error ("cannot write 'PATH': REASON") and leaves no temporary behind.
 void write_file_atomically(const std::filesystem::path& path, std::span<const std::byte> bytes);
 
