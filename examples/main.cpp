@@ -13,6 +13,7 @@
 #include "examples/command.h"
 #include "examples/signals.h"
 #include "raster/core/error.h"
+#include "raster/io/date_stamp.h"
 
 namespace {
 
@@ -90,6 +91,8 @@ int main(int argc, char** argv) {
                 print_error(one_line(error.what()), "run '" + hint_command + " --help' for usage");
             return 2;
         }
+        // A malformed SOURCE_DATE_EPOCH fails before any work, not at the first file written.
+        (void)tessera::io::image_date_time();
         for (const CLI::App* sub : app.get_subcommands()) {
             hint_command = deepest_command(app);
             return runs.at(sub)();

@@ -11,6 +11,7 @@
 #include "raster/core/atomic_file.h"
 #include "raster/core/color_space.h"
 #include "raster/core/error.h"
+#include "raster/io/date_stamp.h"
 #include "raster/io/oiio_pixel_type.h"
 
 namespace tessera::io {
@@ -72,6 +73,7 @@ void write_image(const fs::path& path, const ImageView& image) {
 
     OIIO::ImageSpec spec(image.width, image.height, image.channels,
                          decode_srgb ? OIIO::TypeDesc(OIIO::TypeDesc::HALF) : oiio_type(image.type));
+    spec.attribute("DateTime", image_date_time());  // same bytes on every run (date_stamp.h)
     bool ok = out->open(path.string(), spec) &&
               (decode_srgb ? out->write_image(OIIO::TypeDesc::FLOAT, linear.data())
                            : out->write_image(oiio_type(image.type), image.pixels));

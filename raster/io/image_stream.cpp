@@ -9,6 +9,7 @@
 
 #include "raster/core/atomic_file.h"
 #include "raster/core/error.h"
+#include "raster/io/date_stamp.h"
 #include "raster/io/oiio_pixel_type.h"
 
 namespace tessera::io {
@@ -84,6 +85,7 @@ ImageStream::ImageStream(const fs::path& path, int width, int height, int channe
     if (!im.out->supports("ioproxy"))
         im.fail("format '" + std::string(im.out->format_name()) + "' cannot be written through a checked file");
     OIIO::ImageSpec spec(width, height, channels, oiio_type(type));
+    spec.attribute("DateTime", image_date_time());  // same bytes on every run (date_stamp.h)
     im.tiled = im.out->supports("tiles");
     if (im.tiled) spec.tile_width = spec.tile_height = kTileRows;
     // Classic TIFF addresses 4 GiB; BigTIFF only where it is needed, since older readers lack it.
