@@ -47,6 +47,7 @@
 #include "raster/output/frame_writer.h"
 #include "raster/render/frame_renderer.h"
 #include "raster/scene_file/scene_build.h"
+#include "raster/scene_file/scene_file_error.h"
 #include "raster/scene_file/scene_library.h"
 #include "raster/scene_file/scene_parse.h"
 
@@ -183,6 +184,12 @@ RenderPlan plan_render(const Options& o, const LoadedScene& scene) {
     }
     plan.renderer = render::parse_renderer(o.renderer);
     plan.shadows = render::parse_shadow_mode(o.shadows.empty() ? spec.shadows : o.shadows);
+    if (plan.shadows != render::ShadowMode::none && spec.lights.size() > 4) {  // light masks hold 4 lights
+        const std::string why = "at most 4 lights cast shadows, the scene has " + std::to_string(spec.lights.size());
+        if (!o.shadows.empty()) throw UsageError("--shadows " + o.shadows + ": " + why);
+        throw scene_file::SceneFileError(scene.file.string() + ": /lights: " + why + " and /render/shadows is '" +
+                                         spec.shadows + "'");
+    }
     plan.mode = parse_distribute(o.farm.distribute);
     if (plan.mode == DistributeMode::tiles && o.farm.claim)
         throw UsageError("--claim works on whole frames: not with --distribute tiles");

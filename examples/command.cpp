@@ -6,6 +6,7 @@
 #include <sstream>
 
 #include "raster/asset/framing.h"
+#include "raster/core/direction.h"
 #include "raster/io/camera_file.h"
 
 namespace tessera::cli {
@@ -74,6 +75,7 @@ Camera make_camera(const CameraFlags& flags, int width, int height) {
     if (flags.far) camera.far = *flags.far;
     camera.aspect = float(width) / float(height);
     io::validate_camera(camera);
+    camera.up = *normalisable(camera.up);  // any length (core/direction.h)
     return camera;
 }
 

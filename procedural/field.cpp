@@ -106,6 +106,11 @@ TerrainField::TerrainField(const TerrainParams& params) : p_(params) {
         !std::isfinite(p_.warp) || !(p_.dunes.wavelength > 0.0f))
         throw std::invalid_argument("terrain: frequency and wavelength must be positive and "
                                     "amplitude, base and warp finite");
+    // Noise lattice coordinates are x * frequency, floored to integers: beyond 1e6 cycles per
+    // unit they leave the range where that is exact within any sensible view (and 3e38 turns
+    // them to Inf: a black terrain). Heights beyond 1e18 overflow when squared.
+    if (p_.frequency > 1e6f || std::fabs(p_.amplitude) > 1e18f || std::fabs(p_.base) > 1e18f)
+        throw std::invalid_argument("terrain: frequency must be at most 1e6 and amplitude and base within +-1e18");
 }
 
 void TerrainField::value_batch(size_t n, const float* x, const float* y, const float* z,

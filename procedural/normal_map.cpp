@@ -3,6 +3,7 @@
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
 
+#include <algorithm>
 #include <cmath>
 #include <stdexcept>
 
@@ -30,10 +31,24 @@ NormalMap normal_map(const Grid& heights, float strength, Boundary boundary) {
                 const float dhdrow = 0.5f * (down[x] - up[x]);
                 // v points up the image: dh/dv = -dh/drow, so n.y = -s dh/dv = s dh/drow.
                 const float nx = -strength * dhdx, ny = strength * dhdrow;
-                const float inv = 1.0f / std::sqrt(nx * nx + ny * ny + 1.0f);
-                n[3 * x + 0] = nx * inv;
-                n[3 * x + 1] = ny * inv;
-                n[3 * x + 2] = inv;
+                const float squared = nx * nx + ny * ny + 1.0f;
+                if (std::isfinite(squared)) {
+                    const float inv = 1.0f / std::sqrt(squared);
+                    n[3 * x + 0] = nx * inv;
+                    n[3 * x + 1] = ny * inv;
+                    n[3 * x + 2] = inv;
+                } else {
+                    // A strength so large that the squares overflow float (1e38: the normals lie
+                    // nearly flat): in double, scaled by the largest component first, the
+                    // direction stays exact (the products of two floats are exact in double).
+                    const double dx = -double(strength) * dhdx, dy = double(strength) * dhdrow;
+                    const double largest = std::max({std::fabs(dx), std::fabs(dy), 1.0});
+                    const double sx = dx / largest, sy = dy / largest, sz = 1.0 / largest;
+                    const double inv = 1.0 / std::sqrt(sx * sx + sy * sy + sz * sz);
+                    n[3 * x + 0] = float(sx * inv);
+                    n[3 * x + 1] = float(sy * inv);
+                    n[3 * x + 2] = float(sz * inv);
+                }
             }
         }
     });

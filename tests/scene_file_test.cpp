@@ -238,7 +238,7 @@ TEST(SceneFile, MeshObjectsLoadObjFilesRelativeToTheScene) {
         ADD_FAILURE() << "no error";
     } catch (const scene_file::SceneFileError& e) {
         const std::string m = e.what();
-        EXPECT_NE(m.find("broken.json: object 'object 0': cannot read"), std::string::npos) << m;
+        EXPECT_NE(m.find("broken.json: /objects/0/file: cannot read"), std::string::npos) << m;
         EXPECT_NE(m.find("nope.obj"), std::string::npos) << m;
     }
     fs::remove_all(dir);

@@ -5,6 +5,7 @@
 #include <sstream>
 #include <stdexcept>
 
+#include "raster/core/direction.h"
 #include "raster/core/error.h"
 
 namespace tessera::io {
@@ -51,10 +52,14 @@ void validate_camera(const Camera& c) {
     if (!finite(c.eye) || !finite(c.lookat) || !finite(c.up) || !std::isfinite(c.fovy_deg) ||
         !std::isfinite(c.near) || !std::isfinite(c.far))
         throw std::invalid_argument("camera values must be finite numbers");
+    // Directions are compared at unit length, scaled first (core/direction.h): an up of
+    // [0, 3e38, 0] is as good as [0, 1, 0], and nothing here overflows.
     const glm::vec3 forward = c.lookat - c.eye;
-    if (glm::length(forward) == 0.0f) throw std::invalid_argument("camera eye and lookat are the same point");
-    const glm::vec3 side = glm::cross(forward, c.up);
-    if (!(glm::length(side) > 1e-6f * glm::length(forward) * glm::length(c.up)))
+    if (!finite(forward)) throw std::invalid_argument("camera eye and lookat are too far apart");
+    const auto view = unit_direction(forward);
+    if (!view) throw std::invalid_argument("camera eye and lookat are the same point");
+    const auto up = unit_direction(c.up);
+    if (!up || !(glm::length(glm::cross(*view, *up)) > 1e-6f))
         throw std::invalid_argument("camera up is zero or parallel to the view direction");
     if (!(c.fovy_deg > 0.0f && c.fovy_deg < 180.0f))
         throw std::invalid_argument("field of view must be in (0, 180) degrees");

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cctype>
+#include <cmath>
 #include <string>
 
 #include "raster/core/atomic_file.h"
@@ -51,6 +52,15 @@ io::PixelType frame_pixel_type(const std::filesystem::path& path) {
 }
 
 OwnedImage encode_frame(const std::filesystem::path& path, const Frame& frame) {
+    // A frame holding NaN or Inf (a value of the scene that overflowed float, or a bug) is never
+    // written: an EXR would carry it on into compositing, 8-bit encodings would hide it as
+    // black or white. Finite values are what every renderer stage is meant to produce.
+    size_t non_finite = 0;
+    for (const glm::vec4& p : frame.pixels)
+        non_finite += !(std::isfinite(p.r) && std::isfinite(p.g) && std::isfinite(p.b) && std::isfinite(p.a));
+    if (non_finite > 0)
+        throw Error("cannot write '" + path.string() + "': " + std::to_string(non_finite) +
+                    " pixel(s) came out NaN or infinite (a value of the scene overflows single precision)");
     OwnedImage image{frame.width, frame.height, 4, frame_pixel_type(path), {}};
     const auto keep = [&image](const auto& values) {
         const auto* bytes = reinterpret_cast<const uint8_t*>(values.data());

@@ -3,6 +3,9 @@
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
 
+#include "raster/core/direction.h"
+
+#include <cmath>
 #include <limits>
 #include <stdexcept>
 #include <string>
@@ -12,6 +15,16 @@ namespace {
 
 bool texture_ok(int32_t index, size_t count) {
     return index == kNoTexture || (index >= 0 && size_t(index) < count);
+}
+
+// A transformed normal or tangent at unit length, zero when it has none. A scale of 1e-30 or
+// 1e30 makes its square overflow or underflow: such a vector is scaled first
+// (core/direction.h); every other is divided by its length as always (the same bits).
+glm::vec3 unit_or_zero(glm::vec3 v) {
+    const float len = glm::length(v);
+    if (std::isfinite(len) && len >= 1.1e-19f) return v / len;  // 1.1e-19: sqrt(FLT_MIN)
+    const auto scaled = normalisable(v);
+    return scaled ? *scaled / glm::length(*scaled) : glm::vec3(0.0f);
 }
 
 }  // namespace
@@ -83,16 +96,11 @@ BakedScene bake(const Scene& scene) {
                           [&](const tbb::blocked_range<size_t>& r) {
             for (size_t k = r.begin(); k < r.end(); ++k) {
                 out.positions[v0 + k] = glm::vec3(model * glm::vec4(m.positions[k], 1.0f));
-                if (!m.normals.empty()) {
-                    const glm::vec3 nw = normal_matrix * m.normals[k];
-                    const float len = glm::length(nw);
-                    out.normals[v0 + k] = len > 0.0f ? nw / len : glm::vec3(0.0f);
-                }
+                if (!m.normals.empty()) out.normals[v0 + k] = unit_or_zero(normal_matrix * m.normals[k]);
                 if (!m.uvs.empty()) out.uvs[v0 + k] = m.uvs[k];
                 if (tangents) {
                     const glm::vec3 tw = linear * glm::vec3(m.tangents[k]);
-                    const float len = glm::length(tw);
-                    out.tangents[v0 + k] = glm::vec4(len > 0.0f ? tw / len : tw,
+                    out.tangents[v0 + k] = glm::vec4(unit_or_zero(tw),
                                                      mirrored ? -m.tangents[k].w : m.tangents[k].w);
                 }
                 baked.vertex_material[v0 + k] = o.material;

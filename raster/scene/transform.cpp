@@ -5,6 +5,8 @@
 #include <cmath>
 #include <stdexcept>
 
+#include "raster/core/direction.h"
+
 namespace tessera::scene {
 namespace {
 
@@ -14,13 +16,13 @@ void check(const Transform& t) {
             throw std::invalid_argument("transform: scale components must be finite and non-zero");
     if (!std::isfinite(t.angle))
         throw std::invalid_argument("transform: rotation angle must be finite");
-    if (t.angle != 0.0f && !(glm::length(t.axis) > 0.0f))
-        throw std::invalid_argument("transform: rotation axis must not be zero");
+    if (t.angle != 0.0f && !normalisable(t.axis))
+        throw std::invalid_argument("transform: rotation axis must be finite and not zero");
 }
 
 glm::mat4 rotation(float angle, glm::vec3 axis) {
     if (angle == 0.0f) return glm::mat4(1.0f);
-    return glm::rotate(glm::mat4(1.0f), angle, glm::normalize(axis));
+    return glm::rotate(glm::mat4(1.0f), angle, *unit_direction(axis));  // any length (direction.h)
 }
 
 }  // namespace

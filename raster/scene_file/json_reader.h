@@ -65,9 +65,11 @@ public:
     // Members of an object in file order (ordered_json keeps it), all marked known.
     std::vector<std::pair<std::string, JsonNode>> members() const;
 
+    // `key` as a step of a JSON Pointer (RFC 6901: '~' as "~0", '/' as "~1").
+    static std::string escape(const std::string& key);
+
 private:
     JsonNode child(const std::string& key) const;
-    static std::string escape(const std::string& key);
 
     const nlohmann::ordered_json* value_;
     std::string path_;

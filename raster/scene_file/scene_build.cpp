@@ -7,6 +7,7 @@
 #include <memory>
 #include <utility>
 
+#include "procedural/field.h"
 #include "procedural/normal_map.h"
 #include "procedural/reaction_diffusion.h"
 #include "raster/geometry/box.h"
@@ -15,6 +16,8 @@
 #include "raster/asset/framing.h"
 #include "raster/asset/light_rig.h"
 #include "raster/asset/model_import.h"
+#include "raster/core/direction.h"
+#include "raster/scene_file/json_reader.h"
 #include "raster/scene_file/rd_texture.h"
 #include "raster/scene_file/scene_file_error.h"
 #include "raster/geometry/snake.h"
@@ -47,10 +50,22 @@ texture::Texture build_texture(const TextureSpec& t, const std::filesystem::path
         case TextureSpec::Kind::file: break;
     }
     const std::filesystem::path path = t.file.is_absolute() ? t.file : scene_file.parent_path() / t.file;
+    return texture::load_texture(path, t.encoding);
+}
+
+// Runs `build`; what the generators refuse (std::invalid_argument) and files that cannot be
+// read (tessera::Error) become SceneFileError "FILE: POINTER: ...", naming the value in the
+// scene file, so that a scene's content is never reported as a usage error.
+template <class Build>
+auto at_pointer(const SceneSpec& spec, const std::string& pointer, const Build& build) {
     try {
-        return texture::load_texture(path, t.encoding);
+        return build();
+    } catch (const SceneFileError&) {
+        throw;
+    } catch (const std::invalid_argument& e) {
+        throw SceneFileError(spec.file.string() + ": " + pointer + ": " + e.what());
     } catch (const Error& e) {
-        throw SceneFileError(scene_file.string() + ": /textures/" + t.name + ": " + e.what());
+        throw SceneFileError(spec.file.string() + ": " + pointer + ": " + e.what());
     }
 }
 
@@ -77,8 +92,9 @@ struct Ground {
 // The transform's rotation followed by `spin` rad/s about `axis` after `time` seconds.
 scene::Transform spun(const scene::Transform& base, glm::vec3 axis, float spin, float time) {
     scene::Transform t = base;
-    const glm::quat q = glm::angleAxis(spin * time, glm::normalize(axis)) *
-                        (base.angle != 0.0f ? glm::angleAxis(base.angle, glm::normalize(base.axis)) : glm::quat(1, 0, 0, 0));
+    // unit_direction: an axis of any length (checked non-zero when the scene was read).
+    const glm::quat q = glm::angleAxis(spin * time, *unit_direction(axis)) *
+                        (base.angle != 0.0f ? glm::angleAxis(base.angle, *unit_direction(base.axis)) : glm::quat(1, 0, 0, 0));
     t.angle = glm::angle(q);
     t.axis = t.angle != 0.0f ? glm::axis(q) : glm::vec3(0.0f, 1.0f, 0.0f);
     return t;
@@ -110,14 +126,10 @@ void add_spin(scene::Object& object, const ObjectSpec& o) {
 
 // A model file's parts as objects, each placed by the object's transform; with its own
 // materials and textures, or all in the object's material.
-void add_model(scene::Scene& scene, const SceneSpec& spec, const ObjectSpec& o, std::vector<std::string>* warnings) {
+void add_model(scene::Scene& scene, const SceneSpec& spec, const ObjectSpec& o, const std::string& pointer,
+               std::vector<std::string>* warnings) {
     const std::filesystem::path path = o.file.is_absolute() ? o.file : spec.file.parent_path() / o.file;
-    asset::ImportedModel model;
-    try {
-        model = asset::import_model(path);
-    } catch (const Error& e) {
-        throw SceneFileError(spec.file.string() + ": object '" + o.name + "': " + e.what());
-    }
+    asset::ImportedModel model = at_pointer(spec, pointer + "/file", [&] { return asset::import_model(path); });
     if (warnings)
         for (const std::string& w : model.warnings) warnings->push_back("object '" + o.name + "': " + w);
     std::optional<uint32_t> material;
@@ -188,19 +200,77 @@ void add_snake(scene::Scene& scene, const SceneSpec& spec, const ObjectSpec& o,
     }
 }
 
+// Object `o`'s geometry, transform and animation (snakes are add_snake's, model files
+// add_model's); a heightfield's samples go to `grounds`, for the snakes lying on it.
+scene::Object build_object(const SceneSpec& spec, const ObjectSpec& o,
+                           std::map<std::string, std::shared_ptr<const Ground>>& grounds) {
+    scene::Object object{o.name, nullptr, material_index(spec, o.material), o.transform, {}};
+    const glm::ivec2 g = o.tessellation;
+    switch (o.shape) {
+        case ObjectSpec::Shape::sphere:
+            object.geometry = std::make_shared<const Mesh>(geometry::tessellate(geometry::sphere_surface(o.centre, o.radius), g.x, g.y));
+            break;
+        case ObjectSpec::Shape::ellipsoid:
+            object.geometry = std::make_shared<const Mesh>(geometry::tessellate(geometry::ellipsoid_surface(o.centre, o.radii), g.x, g.y));
+            break;
+        case ObjectSpec::Shape::torus:
+            object.geometry = std::make_shared<const Mesh>(geometry::tessellate(geometry::torus_surface(o.major, o.minor), g.x, g.y));
+            break;
+        case ObjectSpec::Shape::flag: {
+            const ObjectSpec flag = o;
+            object.geometry = std::make_shared<const Mesh>(geometry::tessellate(
+                geometry::flag_surface(o.flag_size.x, o.flag_size.y, o.flag_depth, o.flag_waves, 0.0f), g.x, g.y));
+            if (o.wave_speed != 0.0f)
+                object.animate = [flag](scene::Object& self, float time) {
+                    self.geometry = std::make_shared<const Mesh>(geometry::tessellate(
+                        geometry::flag_surface(flag.flag_size.x, flag.flag_size.y, flag.flag_depth, flag.flag_waves,
+                                     flag.wave_speed * time),
+                        flag.tessellation.x, flag.tessellation.y));
+                };
+            break;
+        }
+        case ObjectSpec::Shape::box:
+            object.geometry = std::make_shared<const Mesh>(geometry::box_mesh(0.5f * o.box_size));
+            break;
+        case ObjectSpec::Shape::heightfield: {
+            auto ground = std::make_shared<Ground>();
+            ground->spec = o.heightfield;
+            ground->offset = o.transform.translation;
+            ground->heights = tp::generate_heightfield(o.heightfield.samples.x, o.heightfield.samples.y,
+                                                       o.heightfield.relief);
+            object.geometry = std::make_shared<const Mesh>(geometry::tessellate(
+                geometry::heightfield_surface(ground->heights.values, ground->heights.width, ground->heights.height,
+                                    o.heightfield.size, o.heightfield.height),
+                ground->heights.width - 1, ground->heights.height - 1));
+            object.transform = scene::Transform{};  // snakes sample the ground by translation only
+            object.transform.translation = o.transform.translation;
+            grounds[o.name] = ground;
+            break;
+        }
+        case ObjectSpec::Shape::mesh: break;   // add_model's
+        case ObjectSpec::Shape::snake: break;  // add_snake's
+    }
+    add_spin(object, o);
+    return object;
+}
+
 }  // namespace
 
 render::AnimatedScene build_scene(const SceneSpec& spec, std::vector<std::string>* warnings) {
     render::AnimatedScene out;
     scene::Scene& scene = out.scene;
     scene.lights = spec.lights;
+    // A direction of any length: one whose square would overflow is scaled first
+    // (direction.h), the shading then normalises it as any other.
+    for (scene::Light& light : scene.lights)
+        if (light.position.w == 0.0f) light.position = glm::vec4(*normalisable(glm::vec3(light.position)), 0.0f);
     scene.background = spec.background;
     scene.camera = spec.camera.camera;
 
     std::map<std::string, int32_t> texture_index;
     for (const TextureSpec& t : spec.textures) {
         texture_index[t.name] = int32_t(scene.textures.size());
-        scene.textures.push_back(build_texture(t, spec.file));
+        scene.textures.push_back(at_pointer(spec, "/textures/" + JsonNode::escape(t.name), [&] { return build_texture(t, spec.file); }));
     }
     for (const MaterialSpec& m : spec.materials) {
         scene::Material material = m.material;
@@ -210,70 +280,33 @@ render::AnimatedScene build_scene(const SceneSpec& spec, std::vector<std::string
     }
 
     std::map<std::string, std::shared_ptr<const Ground>> grounds;
-    for (const ObjectSpec& o : spec.objects) {
+    for (size_t i = 0; i < spec.objects.size(); ++i) {
+        const ObjectSpec& o = spec.objects[i];
         if (o.shape == ObjectSpec::Shape::snake) continue;  // after every ground exists
+        const std::string pointer = "/objects/" + std::to_string(i);
         if (o.shape == ObjectSpec::Shape::mesh) {
             const size_t first = scene.objects.size();
-            add_model(scene, spec, o, warnings);
-            for (size_t i = first; i < scene.objects.size(); ++i) add_spin(scene.objects[i], o);
+            at_pointer(spec, pointer, [&] { add_model(scene, spec, o, pointer, warnings); });
+            for (size_t k = first; k < scene.objects.size(); ++k) add_spin(scene.objects[k], o);
             continue;
         }
-        scene::Object object{o.name, nullptr, material_index(spec, o.material), o.transform, {}};
-        const glm::ivec2 g = o.tessellation;
-        switch (o.shape) {
-            case ObjectSpec::Shape::sphere:
-                object.geometry = std::make_shared<const Mesh>(geometry::tessellate(geometry::sphere_surface(o.centre, o.radius), g.x, g.y));
-                break;
-            case ObjectSpec::Shape::ellipsoid:
-                object.geometry = std::make_shared<const Mesh>(geometry::tessellate(geometry::ellipsoid_surface(o.centre, o.radii), g.x, g.y));
-                break;
-            case ObjectSpec::Shape::torus:
-                object.geometry = std::make_shared<const Mesh>(geometry::tessellate(geometry::torus_surface(o.major, o.minor), g.x, g.y));
-                break;
-            case ObjectSpec::Shape::flag: {
-                const ObjectSpec flag = o;
-                object.geometry = std::make_shared<const Mesh>(geometry::tessellate(
-                    geometry::flag_surface(o.flag_size.x, o.flag_size.y, o.flag_depth, o.flag_waves, 0.0f), g.x, g.y));
-                if (o.wave_speed != 0.0f)
-                    object.animate = [flag](scene::Object& self, float time) {
-                        self.geometry = std::make_shared<const Mesh>(geometry::tessellate(
-                            geometry::flag_surface(flag.flag_size.x, flag.flag_size.y, flag.flag_depth, flag.flag_waves,
-                                         flag.wave_speed * time),
-                            flag.tessellation.x, flag.tessellation.y));
-                    };
-                break;
-            }
-            case ObjectSpec::Shape::box:
-                object.geometry = std::make_shared<const Mesh>(geometry::box_mesh(0.5f * o.box_size));
-                break;
-            case ObjectSpec::Shape::heightfield: {
-                auto ground = std::make_shared<Ground>();
-                ground->spec = o.heightfield;
-                ground->offset = o.transform.translation;
-                ground->heights = tp::generate_heightfield(o.heightfield.samples.x, o.heightfield.samples.y,
-                                                           o.heightfield.relief);
-                object.geometry = std::make_shared<const Mesh>(geometry::tessellate(
-                    geometry::heightfield_surface(ground->heights.values, ground->heights.width, ground->heights.height,
-                                        o.heightfield.size, o.heightfield.height),
-                    ground->heights.width - 1, ground->heights.height - 1));
-                object.transform = scene::Transform{};  // snakes sample the ground by translation only
-                object.transform.translation = o.transform.translation;
-                grounds[o.name] = ground;
-                break;
-            }
-            case ObjectSpec::Shape::mesh: break;
-            case ObjectSpec::Shape::snake: break;
-        }
-        add_spin(object, o);
-        scene.objects.push_back(std::move(object));
+        scene.objects.push_back(at_pointer(spec, pointer, [&] { return build_object(spec, o, grounds); }));
     }
-    for (const ObjectSpec& o : spec.objects)
-        if (o.shape == ObjectSpec::Shape::snake)
-            add_snake(scene, spec, o, o.snake.ground.empty() ? nullptr : grounds.at(o.snake.ground));
+    for (size_t i = 0; i < spec.objects.size(); ++i) {
+        const ObjectSpec& o = spec.objects[i];
+        if (o.shape != ObjectSpec::Shape::snake) continue;
+        at_pointer(spec, "/objects/" + std::to_string(i),
+                   [&] { add_snake(scene, spec, o, o.snake.ground.empty() ? nullptr : grounds.at(o.snake.ground)); });
+    }
+    // The passes' own generators check their settings when the renderer builds them: check
+    // them here, where the pass can be named.
+    for (size_t i = 0; i < spec.passes.size(); ++i)
+        if (spec.passes[i].kind == render::PassSpec::Kind::terrain)
+            at_pointer(spec, "/passes/" + std::to_string(i), [&] { tp::TerrainField check(spec.passes[i].terrain); });
 
     out.camera = spec.camera;
     out.passes = spec.passes;
-    scene.validate();
+    at_pointer(spec, "/objects", [&] { scene.validate(); });
     if (!spec.camera_given || !spec.lights_given) frame_and_light(out, spec);
     return out;
 }

@@ -10,8 +10,8 @@
 
 namespace tessera::scene_file {
 
-// Throws SceneFileError for a texture or OBJ file that cannot be read (naming the scene file
-// and the texture or object), std::invalid_argument for values the generators reject.
+// Throws SceneFileError "FILE: /json/pointer: ..." for a texture, OBJ or model file that
+// cannot be read and for values the generators refuse, naming the texture, object or pass.
 // Warnings (a model's texture that is missing, ...) are appended to `warnings` when given.
 render::AnimatedScene build_scene(const SceneSpec& spec, std::vector<std::string>* warnings = nullptr);
 

@@ -2,10 +2,14 @@
 
 #include <glm/gtc/constants.hpp>
 
+#include <cmath>
 #include <fstream>
 #include <sstream>
 
 #include "procedural/rd_presets.h"
+#include "raster/core/direction.h"
+#include "raster/io/camera_file.h"
+#include "raster/io/obj_loader.h"
 #include "raster/scene_file/json_reader.h"
 
 namespace tessera::scene_file {
@@ -31,6 +35,56 @@ int at_least(const JsonNode& node, const std::string& key, int fallback, int low
     return v;
 }
 
+// Scene values are read as floats, and the renderer squares and multiplies them: a value whose
+// square or product would overflow is refused here, naming it, rather than rendered as Inf
+// or nothing. Positions lie within 1e18 of the origin, as OBJ vertices do
+// (io::kMaxObjCoordinate), so squared distances stay finite; radiances within 1e12 and
+// reflectances within 1e6, so that their products over any number of lights stay far
+// inside float (3.4e38).
+constexpr float kMaxCoordinate = io::kMaxObjCoordinate;
+constexpr float kMaxRadiance = 1e12f;
+constexpr float kMaxReflectance = 1e6f;
+
+glm::vec3 position(const JsonNode& node, const std::string& key, glm::vec3 fallback) {
+    const glm::vec3 v = node.vec3(key, fallback);
+    for (int i = 0; i < 3; ++i)
+        if (std::fabs(v[i]) > kMaxCoordinate) node.at(key).fail("coordinates must lie within +-1e18");
+    return v;
+}
+
+// A colour or radiance: components in [0, high].
+glm::vec3 colour(const JsonNode& node, const std::string& key, glm::vec3 fallback, float high) {
+    const glm::vec3 v = node.vec3(key, fallback);
+    for (int i = 0; i < 3; ++i)
+        if (!(v[i] >= 0.0f && v[i] <= high))
+            node.at(key).fail(high == kMaxRadiance ? "components must lie in [0, 1e12]" : "components must lie in [0, 1e6]");
+    return v;
+}
+
+// A direction of any length but zero, kept as given unless its square would overflow or
+// underflow (then scaled: core/direction.h), so the renderer can normalise it.
+template <glm::length_t N>
+glm::vec<N, float> direction(const JsonNode& node, const std::string& key, glm::vec<N, float> fallback) {
+    glm::vec<N, float> v = fallback;
+    if (const auto n = node.find(key)) {
+        if constexpr (N == 2) v = n->as_vec2();
+        else v = n->as_vec3();
+    }
+    const auto scaled = normalisable(v);
+    if (!scaled) node.at(key).fail("must not be zero");
+    return *scaled;
+}
+
+// A camera that cannot form a view (eye on the lookat point, up along the view, ...), with
+// `node` naming where it was given.
+void check_pose(const JsonNode& node, const Camera& camera) {
+    try {
+        io::validate_camera(camera);
+    } catch (const std::invalid_argument& e) {
+        node.fail(e.what());
+    }
+}
+
 glm::ivec2 grid_of(const JsonNode& node, const std::string& key, glm::ivec2 fallback, int high) {
     const auto n = node.find(key);
     if (!n) return fallback;
@@ -43,9 +97,9 @@ glm::ivec2 grid_of(const JsonNode& node, const std::string& key, glm::ivec2 fall
 }
 
 Camera parse_camera_pose(const JsonNode& n, Camera c) {
-    c.eye = n.vec3("eye", c.eye);
-    c.lookat = n.vec3("lookat", c.lookat);
-    c.up = n.vec3("up", c.up);
+    c.eye = position(n, "eye", c.eye);
+    c.lookat = position(n, "lookat", c.lookat);
+    c.up = direction(n, "up", c.up);
     c.fovy_deg = n.number("fov", c.fovy_deg);
     if (!(c.fovy_deg > 0.0f && c.fovy_deg < 179.0f)) n.at("fov").fail("must lie in (0, 179) degrees");
     c.near = n.number("near", c.near);
@@ -65,14 +119,16 @@ render::CameraSpec parse_camera(const JsonNode& n) {
             k.expect_object();
             render::CameraKey key;
             key.time = k.at("time").as_number();
-            key.eye = k.vec3("eye", spec.camera.eye);
-            key.lookat = k.vec3("lookat", spec.camera.lookat);
+            key.eye = position(k, "eye", spec.camera.eye);
+            key.lookat = position(k, "lookat", spec.camera.lookat);
             key.fovy_deg = k.number("fov", spec.camera.fovy_deg);
             if (!spec.keys.empty() && !(key.time > spec.keys.back().time))
                 k.at("time").fail("keyframe times must increase");
             spec.keys.push_back(key);
             k.finish();
         }
+    } else {
+        check_pose(n, spec.camera);
     }
     n.finish();
     return spec;
@@ -84,14 +140,14 @@ scene::Background parse_background(const JsonNode& n) {
     const std::string type = n.string("type", "colour");
     if (type == "colour") {
         b.kind = scene::Background::Kind::colour;
-        b.colour = n.vec3("colour", b.colour);
+        b.colour = colour(n, "colour", b.colour, kMaxRadiance);
     } else if (type == "sky") {
         b.kind = scene::Background::Kind::sky;
-        b.sky.zenith = n.vec3("zenith", b.sky.zenith);
-        b.sky.horizon = n.vec3("horizon", b.sky.horizon);
-        b.sky.ground = n.vec3("ground", b.sky.ground);
-        b.sky.sun_direction = n.vec3("sun_direction", b.sky.sun_direction);
-        b.sky.sun = n.vec3("sun", b.sky.sun);
+        b.sky.zenith = colour(n, "zenith", b.sky.zenith, kMaxRadiance);
+        b.sky.horizon = colour(n, "horizon", b.sky.horizon, kMaxRadiance);
+        b.sky.ground = colour(n, "ground", b.sky.ground, kMaxRadiance);
+        b.sky.sun_direction = direction(n, "sun_direction", b.sky.sun_direction);
+        b.sky.sun = colour(n, "sun", b.sky.sun, kMaxRadiance);
     } else {
         n.at("type").fail("unknown background '" + type + "' (expected colour or sky)");
     }
@@ -104,14 +160,10 @@ scene::Light parse_light(const JsonNode& n) {
     scene::Light light;
     if (n.has("position") == n.has("direction"))
         n.fail("a light needs exactly one of 'position' (point light) or 'direction' (towards a distant light)");
-    if (n.has("position")) light.position = glm::vec4(n.vec3("position", {}), 1.0f);
-    else {
-        const glm::vec3 d = n.vec3("direction", {});
-        if (glm::length(d) == 0.0f) n.at("direction").fail("must not be zero");
-        light.position = glm::vec4(d, 0.0f);
-    }
-    light.La = n.vec3("La", light.La);
-    light.Le = n.vec3("Le", light.Le);
+    if (n.has("position")) light.position = glm::vec4(position(n, "position", {}), 1.0f);
+    else light.position = glm::vec4(direction(n, "direction", glm::vec3(0.0f)), 0.0f);
+    light.La = colour(n, "La", light.La, kMaxRadiance);
+    light.Le = colour(n, "Le", light.Le, kMaxRadiance);
     n.finish();
     return light;
 }
@@ -126,9 +178,7 @@ procedural::Relief parse_relief(const JsonNode& n, const std::string& key) {
 }
 
 procedural::Dunes parse_dunes(const JsonNode& n, procedural::Dunes d) {
-    d.wind = n.vec2("wind", d.wind);
-    if (glm::length(d.wind) == 0.0f) n.at("wind").fail("must not be zero");
-    d.wind = glm::normalize(d.wind);
+    d.wind = glm::normalize(direction(n, "wind", d.wind));
     d.wavelength = positive(n, "wavelength", d.wavelength);
     d.lee_fraction = n.number("lee_fraction", d.lee_fraction);
     d.sinuosity = n.number("sinuosity", d.sinuosity);
@@ -142,6 +192,7 @@ procedural::HeightfieldParams parse_heightfield_params(const JsonNode& n, proced
     p.relief = parse_relief(n, "relief");
     p.fractal.octaves = at_least(n, "octaves", p.fractal.octaves, 1, 24);
     p.fractal.gain = n.number("gain", p.fractal.gain);
+    if (!(p.fractal.gain > 0.0f && p.fractal.gain < 1.0f)) n.at("gain").fail("must lie in (0, 1)");
     p.fractal.seed = uint32_t(at_least(n, "seed", int(p.fractal.seed), 0, 1 << 30));
     p.cells = at_least(n, "cells", p.cells, 1, 4096);
     p.warp = n.number("warp", p.warp);
@@ -172,6 +223,7 @@ TextureSpec parse_texture(const std::string& name, const JsonNode& n) {
         t.grow_per_frame = at_least(n, "grow_per_frame", t.grow_per_frame, 0, 100000);
         t.seed = uint32_t(at_least(n, "seed", int(t.seed), 0, 1 << 30));
         t.anisotropy = n.number("anisotropy", t.anisotropy);
+        if (!(t.anisotropy >= -1.0f && t.anisotropy <= 1.0f)) n.at("anisotropy").fail("must lie in [-1, 1]");
         if (const auto ramp = n.find("ramp")) {
             for (const JsonNode& stop : ramp->elements()) {
                 stop.expect_object();
@@ -204,7 +256,10 @@ MaterialSpec parse_material(const std::string& name, const JsonNode& n) {
     // meaning and whether the model uses them is set_material_parameters' business.
     std::vector<scene::MaterialParameter> params;
     for (const char* key : {"ka", "kd", "ks"})
-        if (const auto v = n.find(key)) params.push_back({key, [&] { const glm::vec3 c = v->as_vec3(); return std::vector<float>{c.x, c.y, c.z}; }(), {}});
+        if (n.has(key)) {
+            const glm::vec3 c = colour(n, key, glm::vec3(0.0f), kMaxReflectance);
+            params.push_back({key, {c.x, c.y, c.z}, {}});
+        }
     for (const char* key : {"shine", "opacity"})
         if (const auto v = n.find(key)) params.push_back({key, {v->as_number()}, {}});
     if (const auto v = n.find("uv_scale")) {
@@ -239,9 +294,9 @@ scene::Transform parse_transform(const JsonNode& n) {
         else t.scale = s->as_vec3();
         if (t.scale.x == 0.0f || t.scale.y == 0.0f || t.scale.z == 0.0f) s->fail("scale must not be zero");
     }
-    t.axis = n.vec3("axis", t.axis);
     t.angle = radians_of(n, "angle", 0.0f);
-    if (t.angle != 0.0f && glm::length(t.axis) == 0.0f) n.at("axis").fail("must not be zero");
+    // Any length: scene::Transform normalises it safely (core/direction.h).
+    t.axis = t.angle != 0.0f ? direction(n, "axis", t.axis) : n.vec3("axis", t.axis);
     t.translation = n.vec3("translate", t.translation);
     n.finish();
     return t;
@@ -278,8 +333,7 @@ ObjectSpec parse_object(const JsonNode& n, size_t index) {
     if (const auto t = n.find("transform")) o.transform = parse_transform(*t);
     if (const auto spin = n.find("spin")) {
         spin->expect_object();
-        o.spin_axis = spin->vec3("axis", o.spin_axis);
-        if (glm::length(o.spin_axis) == 0.0f) spin->at("axis").fail("must not be zero");
+        o.spin_axis = direction(*spin, "axis", o.spin_axis);
         o.spin = glm::radians(spin->number("speed", 0.0f));  // degrees per second
         spin->finish();
     }
@@ -298,9 +352,11 @@ ObjectSpec parse_object(const JsonNode& n, size_t index) {
         o.shape = ObjectSpec::Shape::torus;
         o.major = positive(n, "major", o.major);
         o.minor = positive(n, "minor", o.minor);
+        if (!(o.minor < o.major)) n.at(n.has("minor") ? "minor" : "major").fail("a torus needs minor < major");
     } else if (type == "flag") {
         o.shape = ObjectSpec::Shape::flag;
         o.flag_size = n.vec2("size", o.flag_size);
+        if (!(o.flag_size.x > 0.0f && o.flag_size.y > 0.0f)) n.at("size").fail("must be positive");
         o.flag_depth = n.number("depth", o.flag_depth);
         o.flag_waves = n.number("waves", o.flag_waves);
         o.wave_speed = n.number("wave_speed", o.wave_speed);
@@ -370,6 +426,7 @@ render::PassSpec parse_pass(const JsonNode& n) {
         t.relief = parse_relief(n, "relief");
         t.fractal.octaves = at_least(n, "octaves", t.fractal.octaves, 1, 24);
         t.fractal.gain = n.number("gain", t.fractal.gain);
+        if (!(t.fractal.gain > 0.0f && t.fractal.gain < 1.0f)) n.at("gain").fail("must lie in (0, 1)");
         t.fractal.seed = uint32_t(at_least(n, "seed", 0, 0, 1 << 30));
         t.frequency = positive(n, "frequency", t.frequency);
         t.amplitude = positive(n, "amplitude", t.amplitude);
