@@ -108,6 +108,10 @@ int run(const Options& o) {
     ModelMesh model = load_model_mesh(o.mesh);
     Mesh& mesh = model.mesh;
     const Camera camera = make_camera_or_frame(o.camera, width, height, model.box);
+    // An OBJ that is no OBJ at all (another text file, say) reads as an empty mesh: say so.
+    if (mesh.indices.empty())
+        std::fprintf(stderr, "tessera: warning: '%s' yields no geometry (no faces); the image is empty\n",
+                     o.mesh.c_str());
     if (raytrace) embree::reserve_ray_padding(mesh);  // lets Embree share the vertex buffer
     const auto threads = limit_threads(o.threads);
 

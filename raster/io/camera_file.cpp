@@ -1,12 +1,12 @@
 #include "raster/io/camera_file.h"
 
 #include <cmath>
-#include <fstream>
 #include <sstream>
 #include <stdexcept>
 
 #include "raster/core/direction.h"
 #include "raster/core/error.h"
+#include "raster/core/input_file.h"
 
 namespace tessera::io {
 
@@ -37,14 +37,11 @@ void parse_camera(const std::string& text, const std::string& name, Camera& came
 }
 
 void read_camera_file(const std::filesystem::path& path, Camera& camera) {
-    std::ifstream file(path);
-    std::error_code ec;
-    if (!file || std::filesystem::is_directory(path, ec))
-        throw Error("cannot read '" + path.string() + "': " +
-                    (std::filesystem::exists(path, ec) ? "not a readable file" : "no such file"));
-    std::ostringstream text;
-    text << file.rdbuf();
-    parse_camera(text.str(), path.string(), camera);
+    InputFile file(path);  // a device, FIFO or directory is refused at once
+    // A camera file is a few lines; a megabyte is no camera file.
+    const std::string text = file.read(size_t(1) << 20);
+    if (file.size() > text.size()) throw Error("cannot read '" + path.string() + "': not a camera file (too large)");
+    parse_camera(text, path.string(), camera);
 }
 
 void validate_camera(const Camera& c) {

@@ -147,6 +147,11 @@ std::optional<std::string> header_problem(const std::filesystem::path& path) {
     std::istringstream first_line(head.substr(0, head.find('\n')));
     std::string magic;
     first_line >> magic;
+    // OBJ is text: a NUL byte in its first 64 KiB means binary data (a wrong file, a corrupt
+    // or sparse one), which Assimp would read to its end, however large, as an empty mesh.
+    if (ext == ".obj")
+        if (const size_t nul = head.find('\0'); nul != std::string::npos)
+            return "not an OBJ text file (binary data at byte " + std::to_string(nul) + ")";
     if (ext == ".ply" || head.compare(0, 3, "ply") == 0) return check_ply(head, size);
     if (ext == ".off" || (magic.size() >= 3 && magic.size() <= 8 && magic.compare(magic.size() - 3, 3, "OFF") == 0))
         return check_off(head, size);

@@ -7,6 +7,8 @@
 //   property sizes), so no valid file is rejected;
 // - a PLY header's end: an "end_header" line. Assimp 5.2's PLY reader loops forever on headers
 //   without one (found by fuzzing).
+// - an OBJ file's first 64 KiB are text: binary data (a sparse file of gigabytes, a wrong file)
+//   would be read to its end and yield an empty mesh.
 // The reader runs isolated anyway (isolated_call.h); these checks turn the common cases into a
 // precise message instead of a time-out.
 #pragma once

@@ -11,6 +11,7 @@
 #include "raster/core/atomic_file.h"
 #include "raster/core/color_space.h"
 #include "raster/core/error.h"
+#include "raster/core/input_file.h"
 #include "raster/io/date_stamp.h"
 #include "raster/io/oiio_pixel_type.h"
 
@@ -118,9 +119,7 @@ FloatImage decode(OIIO::ImageInput& in, const std::string& what) {
 }  // namespace
 
 FloatImage read_image(const fs::path& path) {
-    std::error_code ec;
-    if (!fs::is_regular_file(path, ec))
-        throw Error("cannot read " + describe(path) + ": no such file");
+    check_input_file(path);  // "no such file", or a device, FIFO or directory refused at once
     const OIIO::ImageSpec config = straight_alpha();
     auto in = OIIO::ImageInput::open(path.string(), &config);
     if (!in) {

@@ -7,6 +7,7 @@
 #include <utility>
 
 #include "raster/core/error.h"
+#include "raster/core/input_file.h"
 #include "raster/io/assimp_reader.h"
 #include "raster/io/header_check.h"
 #include "raster/io/isolated_call.h"
@@ -190,9 +191,7 @@ ModelFile convert(RawModel raw, const std::filesystem::path& path) {
 }  // namespace
 
 ModelFile read_model(const std::filesystem::path& path) {
-    std::error_code ec;
-    if (!std::filesystem::exists(path, ec)) fail(path, "no such file");
-    if (std::filesystem::is_directory(path, ec)) fail(path, "a directory, not a model file");
+    check_input_file(path);  // "no such file", or a directory, device or FIFO refused at once
     if (!model_format_supported(path))
         fail(path, "no model reader for '" + path.extension().string() +
                        "' (glTF 2.0, OBJ, PLY, STL, FBX, Collada and the other formats Assimp reads)");

@@ -8,12 +8,11 @@
 #include <string_view>
 #include <tuple>
 #include <cmath>
-#include <fstream>
-#include <sstream>
 #include <unordered_map>
 
 #include "raster/core/atomic_file.h"
 #include "raster/core/error.h"
+#include "raster/core/input_file.h"
 
 namespace tessera::io {
 
@@ -29,11 +28,15 @@ bool good(double v) { return std::isfinite(v) && std::fabs(v) <= kMaxObjCoordina
 // than three corners without a word; check those records ourselves first so that a malformed
 // file is reported with its line. Returns, per "v" record in file order, whether it is bad
 // (NaN, infinite or huge).
-std::vector<uint8_t> check_records(const std::string& text, const std::string& name) {
-    // OBJ is text: a NUL byte means binary data (a wrong file, or a corrupt one), which would
-    // otherwise read as an empty mesh since unknown records are skipped (issue 10).
+// OBJ is text: a NUL byte means binary data (a wrong file, or a corrupt one), which would
+// otherwise read as an empty mesh since unknown records are skipped (issue 10).
+void check_text(std::string_view text, const std::string& name) {
     if (const size_t nul = text.find('\0'); nul != std::string::npos)
         fail(name, "not an OBJ text file (binary data at byte " + std::to_string(nul) + ")");
+}
+
+std::vector<uint8_t> check_records(const std::string& text, const std::string& name) {
+    check_text(text, name);
     std::vector<uint8_t> bad_positions;
     const char* p = text.data();
     const char* const end = p + text.size();
@@ -208,14 +211,13 @@ Mesh parse_obj(const std::string& text, const std::string& name, ObjLoadStats* s
 }
 
 Mesh load_obj(const std::filesystem::path& path, ObjLoadStats* stats) {
-    std::ifstream file(path, std::ios::binary);
-    std::error_code ec;
-    if (!file || std::filesystem::is_directory(path, ec))
-        fail(path.string(), std::filesystem::exists(path, ec) ? "not a readable file" : "no such file");
-    std::ostringstream text;
-    text << file.rdbuf();
-    if (file.bad()) fail(path.string(), "read error");
-    return parse_obj(text.str(), path.string(), stats);
+    InputFile file(path);  // a device, FIFO or directory is refused at once
+    // The first 64 KiB are checked before the rest is read, so that a binary file of
+    // gigabytes (or a sparse one of zeros) is refused at once.
+    std::string text = file.read(size_t(1) << 16);
+    check_text(text, path.string());
+    text += file.read_rest();
+    return parse_obj(text, path.string(), stats);
 }
 
 void write_obj(const std::filesystem::path& path, const Mesh& mesh) {

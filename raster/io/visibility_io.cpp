@@ -8,6 +8,7 @@
 
 #include "raster/core/atomic_file.h"
 #include "raster/core/error.h"
+#include "raster/core/input_file.h"
 
 namespace tessera::io {
 
@@ -33,6 +34,7 @@ void write_depth_pfm(const std::filesystem::path& path, const VisibilityBuffer& 
 }
 
 VisibilityBuffer read_tsid(const std::filesystem::path& path) {
+    check_input_file(path);  // a device, FIFO or directory is refused at once
     std::ifstream file(path, std::ios::binary);
     if (!file) throw Error("cannot read '" + path.string() + "': no such file");
     std::string magic;

@@ -18,6 +18,60 @@ const char* type_name(const nlohmann::ordered_json& v) {
 
 }  // namespace
 
+std::vector<std::string> repeated_keys(const std::string& text) {
+    // A SAX pass over the text: a stack of the containers open, each with the keys seen so far
+    // (objects) or the index reached (arrays), which also spells the pointer of a repeat.
+    struct Finder : nlohmann::json_sax<nlohmann::ordered_json> {
+        struct Level {
+            bool object = true;
+            std::set<std::string> keys;
+            long index = -1;
+            std::string step;  // the current key or index, escaped
+        };
+        std::vector<Level> levels;
+        std::vector<std::string> found;
+
+        void value() {  // a value starts: in an array, at the next index
+            if (!levels.empty() && !levels.back().object) levels.back().step = std::to_string(++levels.back().index);
+        }
+        bool open(bool object) {
+            value();
+            levels.push_back({object, {}, -1, {}});
+            return true;
+        }
+        bool close() {
+            levels.pop_back();
+            return true;
+        }
+        bool null() override { return value(), true; }
+        bool boolean(bool) override { return value(), true; }
+        bool number_integer(number_integer_t) override { return value(), true; }
+        bool number_unsigned(number_unsigned_t) override { return value(), true; }
+        bool number_float(number_float_t, const string_t&) override { return value(), true; }
+        bool string(string_t&) override { return value(), true; }
+        bool binary(binary_t&) override { return value(), true; }
+        bool start_object(std::size_t) override { return open(true); }
+        bool start_array(std::size_t) override { return open(false); }
+        bool end_object() override { return close(); }
+        bool end_array() override { return close(); }
+        bool key(string_t& k) override {
+            Level& level = levels.back();
+            level.step = JsonNode::escape(k);
+            if (!level.keys.insert(k).second) {
+                std::string pointer;
+                for (const Level& l : levels) pointer += "/" + l.step;
+                found.push_back(pointer);
+            }
+            return true;
+        }
+        bool parse_error(std::size_t, const std::string&, const nlohmann::detail::exception&) override {
+            return false;
+        }
+    } finder;
+    nlohmann::ordered_json::sax_parse(text, &finder);
+    return finder.found;
+}
+
 void JsonNode::fail(const std::string& message) const {
     throw SceneFileError(diagnostics_->file + ": " + (path_.empty() ? "/" : path_) + ": " + message);
 }

@@ -21,6 +21,11 @@ struct Diagnostics {
     std::vector<std::string>* warnings = nullptr;
 };
 
+// The JSON Pointers of keys that an object of `text` (valid JSON) gives more than once, in file
+// order. RFC 8259 leaves their meaning open and nlohmann-json keeps the last one, so a second
+// "objects" would silently replace the first: the scene reader warns about each.
+std::vector<std::string> repeated_keys(const std::string& text);
+
 class JsonNode {
 public:
     JsonNode(const nlohmann::ordered_json& value, std::string path, const Diagnostics& diagnostics)

@@ -3,11 +3,11 @@
 #include <glm/gtc/constants.hpp>
 
 #include <cmath>
-#include <fstream>
-#include <sstream>
+#include <cstdint>
 
 #include "procedural/rd_presets.h"
 #include "raster/core/direction.h"
+#include "raster/core/input_file.h"
 #include "raster/io/camera_file.h"
 #include "raster/io/obj_loader.h"
 #include "raster/scene_file/json_reader.h"
@@ -547,6 +547,8 @@ SceneSpec parse_scene(const std::string& json_text, const std::string& label,
     // error, issue 10); the message is recovered by a second, error-recording pass.
     const nlohmann::ordered_json doc = nlohmann::ordered_json::parse(json_text, nullptr, false);
     if (doc.is_discarded()) throw SceneFileError(label + ": malformed JSON: " + json_error(json_text));
+    for (const std::string& pointer : repeated_keys(json_text))
+        warnings.push_back(one_line_diagnostic(label + ": " + pointer + ": the key is given twice; the last value is used"));
     const scene_file::Diagnostics diagnostics{label, &warnings};
     const JsonNode root(doc, "", diagnostics);
     root.expect_object();
@@ -599,13 +601,22 @@ SceneSpec parse_scene(const std::string& json_text, const std::string& label,
 }
 
 SceneSpec load_scene_file(const std::filesystem::path& path, std::vector<std::string>& warnings) {
-    std::ifstream in(path, std::ios::binary);
-    if (!in || std::filesystem::is_directory(path))
-        throw SceneFileError("cannot read scene file '" + path.string() + "': " +
-                             (std::filesystem::exists(path) ? "not a readable file" : "no such file"));
-    std::ostringstream text;
-    text << in.rdbuf();
-    SceneSpec spec = parse_scene(text.str(), path.string(), warnings);
+    // A device, FIFO or directory is refused at once; so is a file too large to be a scene
+    // (its meshes and textures are files of their own), before it is read.
+    constexpr uint64_t kMaxSceneBytes = uint64_t(64) << 20;
+    std::string text;
+    try {
+        InputFile file(path, "scene file");
+        if (file.size() > kMaxSceneBytes)
+            throw SceneFileError("cannot read scene file '" + path.string() + "': it holds " +
+                                 std::to_string(file.size() >> 20) + " MiB, a scene file at most 64 MiB");
+        text = file.read_rest();
+    } catch (const SceneFileError&) {
+        throw;
+    } catch (const Error& e) {
+        throw SceneFileError(e.what());
+    }
+    SceneSpec spec = parse_scene(text, path.string(), warnings);
     spec.file = path;
     return spec;
 }
