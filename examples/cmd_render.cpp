@@ -10,8 +10,8 @@
 // and streamed into their file (FrameRenderer::render_bands, FrameStream), so memory holds a
 // band, not the frame. Ctrl-C, SIGTERM or SIGHUP finishes the frame in hand, waits for the
 // writer and exits 128 + the signal's number (130, 143, 129). Everything the flags and the
-// scene say is checked before the first frame: the output folders, the trace
-// file. Exit codes as every command: 2 for bad flags, 1 for a failed run.
+// scene say is checked before the first frame: every frame's camera, the output folders, the
+// trace file. Exit codes as every command: 2 for bad flags, 1 for a failed run.
 #include <unistd.h>
 
 #include <algorithm>
@@ -40,6 +40,7 @@
 #include "raster/core/atomic_file.h"
 #include "raster/core/error.h"
 #include "raster/core/trace.h"
+#include "raster/io/camera_file.h"
 #include "raster/io/image_completeness.h"
 #include "raster/io/image_io.h"
 #include "raster/output/frame_encoding.h"
@@ -156,6 +157,21 @@ struct RenderPlan {
     DistributeMode mode{};
 };
 
+// Every frame's camera, checked before the first frame is rendered: keyframes and an orbit
+// can bring the eye onto the lookat point, or the view along 'up', at a single frame.
+void check_cameras(const LoadedScene& scene, const RenderPlan& plan) {
+    for (const int f : frames_of_shard(plan.range, plan.shard)) {
+        const float time = float(f) / plan.fps;  // as FrameLoop renders it
+        try {
+            io::validate_camera(render::camera_at(scene.spec.camera, time, float(plan.width) / float(plan.height)));
+        } catch (const std::invalid_argument& e) {
+            char when[64];
+            std::snprintf(when, sizeof when, "at frame %d (%.3g s): ", f, double(time));
+            throw scene_file::SceneFileError(scene.file.string() + ": /camera: " + when + e.what());
+        }
+    }
+}
+
 RenderPlan plan_render(const Options& o, const LoadedScene& scene) {
     const scene_file::SceneSpec& spec = scene.spec;
     RenderPlan plan;
@@ -190,6 +206,7 @@ RenderPlan plan_render(const Options& o, const LoadedScene& scene) {
         throw scene_file::SceneFileError(scene.file.string() + ": /lights: " + why + " and /render/shadows is '" +
                                          spec.shadows + "'");
     }
+    check_cameras(scene, plan);
     plan.mode = parse_distribute(o.farm.distribute);
     if (plan.mode == DistributeMode::tiles && o.farm.claim)
         throw UsageError("--claim works on whole frames: not with --distribute tiles");

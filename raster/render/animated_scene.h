@@ -4,6 +4,7 @@
 #pragma once
 #include <glm/glm.hpp>
 
+#include <utility>
 #include <vector>
 
 #include "procedural/heightfield.h"
@@ -65,5 +66,9 @@ AnimatedScene still_scene(scene::Scene scene);
 
 // The camera of `spec` at `time`: keyframes interpolated (Catmull-Rom in time), then the orbit.
 Camera camera_at(const CameraSpec& spec, float time, float aspect);
+
+// The lowest and highest fov the spline takes between keys[segment] and keys[segment + 1]
+// (segment + 1 < keys.size()): Catmull-Rom overshoots the keys where they change steeply.
+std::pair<float, float> fov_range(const std::vector<CameraKey>& keys, size_t segment);
 
 }  // namespace tessera::render

@@ -109,6 +109,26 @@ Camera parse_camera_pose(const JsonNode& n, Camera c) {
     return c;
 }
 
+// Each keyframe's pose is checked as the static one is, and the fov spline between keys
+// over its whole length: Catmull-Rom overshoots (keys 10, 170, 170, 10 reach 190 between the
+// two 170s), which would turn the image upside down at the frames in between.
+void check_keyframes(const JsonNode& keys, const render::CameraSpec& spec) {
+    const auto elements = keys.elements();
+    for (size_t i = 0; i < spec.keys.size(); ++i) {
+        Camera pose = spec.camera;
+        pose.eye = spec.keys[i].eye, pose.lookat = spec.keys[i].lookat, pose.fovy_deg = spec.keys[i].fovy_deg;
+        check_pose(elements[i], pose);
+    }
+    for (size_t i = 0; i + 1 < spec.keys.size(); ++i) {
+        const auto [low, high] = render::fov_range(spec.keys, i);
+        if (!(low > 0.0f && high < 179.0f))
+            keys.fail("the fov spline between keyframes " + std::to_string(i) + " and " + std::to_string(i + 1) +
+                      " reaches " + std::to_string(std::lround(low > 0.0f ? high : low)) +
+                      " degrees, outside (0, 179) (Catmull-Rom overshoots so steep a change; add keyframes or "
+                      "soften it)");
+    }
+}
+
 render::CameraSpec parse_camera(const JsonNode& n) {
     n.expect_object();
     render::CameraSpec spec;
@@ -122,11 +142,13 @@ render::CameraSpec parse_camera(const JsonNode& n) {
             key.eye = position(k, "eye", spec.camera.eye);
             key.lookat = position(k, "lookat", spec.camera.lookat);
             key.fovy_deg = k.number("fov", spec.camera.fovy_deg);
+            if (!(key.fovy_deg > 0.0f && key.fovy_deg < 179.0f)) k.at("fov").fail("must lie in (0, 179) degrees");
             if (!spec.keys.empty() && !(key.time > spec.keys.back().time))
                 k.at("time").fail("keyframe times must increase");
             spec.keys.push_back(key);
             k.finish();
         }
+        check_keyframes(*keys, spec);
     } else {
         check_pose(n, spec.camera);
     }
