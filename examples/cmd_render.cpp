@@ -23,6 +23,7 @@
 #include <cstdio>
 #include <filesystem>
 #include <map>
+#include <new>
 #include <optional>
 #include <set>
 #include <string>
@@ -356,7 +357,15 @@ int FrameLoop::run(int skipped) {
         const fs::path path = plan_.pattern.path_for(f);
         if (!farm_.claim(path, plan_.width, plan_.height)) continue;
         render::FrameStats st;
-        const Outcome outcome = banded_ ? render_in_bands(f, path, st) : render_in_memory(f, path, st);
+        Outcome outcome;
+        try {
+            outcome = banded_ ? render_in_bands(f, path, st) : render_in_memory(f, path, st);
+        } catch (const std::bad_alloc&) {
+            // Only a large frame makes --size the thing to change (a band holds ~4 M pixels).
+            const bool large = int64_t(plan_.width) * plan_.height > (int64_t(1) << 22);
+            throw Error("out of memory rendering frame " + std::to_string(f) + " (" + std::to_string(plan_.width) +
+                        "x" + std::to_string(plan_.height) + ")" + (large ? ": try a smaller --size" : ""));
+        }
         if (outcome == Outcome::skipped) continue;
         if (outcome == Outcome::stop) break;
         report(f, path, st);
@@ -493,8 +502,14 @@ int run(const Options& o, const std::string& executable) {
     const RenderPlan plan = plan_render(o, scene);
     PendingFrames pending = pending_frames(o, plan);
     prepare_output_folders(plan.pattern, pending.frames);
-    FrameLoop loop(o, scene, plan, std::move(pending.frames));
-    return loop.run(pending.skipped);
+    std::optional<FrameLoop> loop;
+    try {
+        loop.emplace(o, scene, plan, std::move(pending.frames));
+    } catch (const std::bad_alloc&) {
+        throw Error("out of memory building the scene of '" + scene.file.string() +
+                    "' (its meshes, textures and tessellations need more than this machine has free)");
+    }
+    return loop->run(pending.skipped);
 }
 
 // The running binary (for scene directories next to an installed tessera).

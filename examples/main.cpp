@@ -108,7 +108,7 @@ int main(int argc, char** argv) {
         print_error(error.what(), "");
         return 1;
     } catch (const std::bad_alloc&) {
-        print_error("out of memory (try a smaller --size)", "");
+        print_error("out of memory", "");
         return 1;
     } catch (const std::exception& error) {
         print_error(error.what(), "");
