@@ -36,11 +36,20 @@ struct Tile {
     size_t stride = 0;
     glm::vec4* colour = nullptr;   // linear RGBA
     size_t colour_stride = 0;
+    // Multisampled frames (coverage_layers.h): per pixel, the samples the surface in this
+    // tile covers, same stride as triangle; 0 where the tile holds no surface for the pixel
+    // (passes leave such pixels alone). Null: every pixel is wholly this tile's.
+    const uint8_t* coverage = nullptr;
+    // With coverage: per pixel, where on the pixel the surface is to be evaluated when it
+    // must lie on it (shadow tests), as an offset from the pixel centre in pixels; null: the
+    // centre.
+    const glm::vec2* centroid = nullptr;
 
     int width() const { return rect.width(); }
     int height() const { return rect.height(); }
     size_t offset(int x, int y) const { return size_t(y - rect.y0) * stride + size_t(x - rect.x0); }
     uint32_t& triangle_at(int x, int y) const { return triangle[offset(x, y)]; }
+    bool active(int x, int y) const { return !coverage || coverage[offset(x, y)] != 0; }
     float& depth_at(int x, int y) const { return depth[offset(x, y)]; }
     glm::vec4& colour_at(int x, int y) const {
         return colour[size_t(y - rect.y0) * colour_stride + size_t(x - rect.x0)];

@@ -49,7 +49,7 @@ void run_primitive_stage(const Mesh& mesh, const ClipVertices& v, const Viewport
             // Set up on the stack, copied out only when drawn: most culled triangles then cost
             // no write to `out` (bench_raster BM_Setup/1000: 12.7 -> 12.0 ms).
             const SetupResult result =
-                setup_triangle(p0.window, p1.window, p2.window, options.cull, viewport, setup);
+                setup_triangle(p0.window, p1.window, p2.window, options.cull, viewport, setup, options.samples);
             count(result, stats);
             if (result == SetupResult::drawn) {
                 setup.triangle = t;
@@ -67,7 +67,7 @@ void run_primitive_stage(const Mesh& mesh, const ClipVertices& v, const Viewport
         for (int i = 0; i < n; ++i) w[i] = project_and_snap(viewport, polygon[i]);
         // The clipped polygon is convex: a fan from its first vertex keeps the winding.
         for (int i = 1; i + 1 < n; ++i) {
-            const SetupResult result = setup_triangle(w[0], w[i], w[i + 1], options.cull, viewport, setup);
+            const SetupResult result = setup_triangle(w[0], w[i], w[i + 1], options.cull, viewport, setup, options.samples);
             count(result, stats);
             if (result == SetupResult::drawn) {
                 setup.triangle = t;

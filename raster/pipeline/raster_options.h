@@ -22,6 +22,13 @@ struct RasterOptions {
     // Depth only (shadow maps): no triangle ids are written - VisibilityBuffer::triangle is
     // left empty - and no passes or colour may be given.
     bool depth_only = false;
+    // Samples per pixel: 1, 4, 8 or 16 (sample_pattern.h). With more than one, coverage and
+    // depth are found per sample, and the passes run once per distinct surface of a pixel and
+    // are resolved into the colour (coverage_layers.h); they need the colour tile.
+    int samples = 1;
+    // Multisampled: also keep every sample in VisibilityBuffer::sample_triangle/sample_depth
+    // (tests, --out-id); costs 8 bytes per sample of frame memory traffic.
+    bool keep_samples = false;
 };
 
 // Counts and per-stage wall times of one render (times in milliseconds).

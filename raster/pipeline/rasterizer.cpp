@@ -11,6 +11,7 @@
 #include <chrono>
 #include <cstring>
 
+#include "raster/core/coverage_layers.h"
 #include "raster/pipeline/bin.h"
 #include "raster/pipeline/primitive_stage.h"
 #include "raster/core/trace.h"
@@ -25,7 +26,37 @@ struct TileScratch {
     TileBuffers buffers;
     std::vector<glm::vec4> color;
     std::vector<Fragment> fragments;
+    CoverageLayers layers;  // multisampled renders
 };
+
+// A multisampled tile out of its buffers: its surfaces listed as layers, the main surface of
+// each pixel (layer 0) into the frame's visibility, every sample too when kept; the buffers
+// are left cleared for the next tile.
+void multisampled_tile(TileBuffers& buffers, const TileRect& rect, VisibilityBuffer& visibility, bool keep_samples,
+                       CoverageLayers& layers) {
+    const size_t plane = buffers.plane();
+    layers.build(rect, buffers.samples, sample_positions(buffers.samples), [&](int x, int y, int s, uint32_t& triangle, float& depth) {
+        const size_t i = size_t(s) * plane + buffers.index(x - rect.x0, y - rect.y0);
+        triangle = buffers.triangle[i];
+        depth = buffers.depth[i];
+    });
+    if (keep_samples)
+        for (int y = rect.y0; y < rect.y1; ++y)
+            for (int x = rect.x0; x < rect.x1; ++x)
+                for (int s = 0; s < buffers.samples; ++s) {
+                    const size_t i = size_t(s) * plane + buffers.index(x - rect.x0, y - rect.y0);
+                    visibility.sample_triangle[visibility.sample_index(x, y, s)] = buffers.triangle[i];
+                    visibility.sample_depth[visibility.sample_index(x, y, s)] = buffers.depth[i];
+                }
+    const Tile primary = layers.layer(0, glm::vec4(0.0f));
+    for (int y = rect.y0; y < rect.y1; ++y)
+        for (int x = rect.x0; x < rect.x1; ++x) {
+            const size_t i = size_t(y) * size_t(visibility.width) + size_t(x);
+            visibility.triangle[i] = primary.triangle_at(x, y);
+            visibility.depth[i] = primary.depth_at(x, y);
+        }
+    buffers.clear(buffers.size, buffers.samples);
+}
 
 }  // namespace
 
@@ -79,6 +110,11 @@ void Rasterizer::render(const Mesh& mesh, const glm::mat4& view_projection, cons
     if (options.tile_size < 16 || options.tile_size > 256 || !std::has_single_bit(unsigned(options.tile_size)))
         throw std::invalid_argument("tile size " + std::to_string(options.tile_size) +
                                     " must be a power of two in 16 .. 256");
+    if (!valid_sample_count(options.samples))
+        throw std::invalid_argument("RasterOptions::samples must be 1, 4, 8 or 16, not " + std::to_string(options.samples));
+    const int samples = options.samples;
+    if (samples > 1 && (options.depth_only || !options.tile_color))
+        throw std::invalid_argument("Rasterizer::render: multisampling needs the colour tile and triangle ids");
     s.grid = TileGrid(viewport.width, viewport.height, options.tile_size);
     const TileGrid& grid = s.grid;
 
@@ -122,6 +158,10 @@ void Rasterizer::render(const Mesh& mesh, const glm::mat4& view_projection, cons
     if (color && !options.tile_color)
         throw std::invalid_argument("Rasterizer::render: a colour buffer needs RasterOptions::tile_color");
     if (color) color->resize(size_t(viewport.width) * viewport.height);
+    visibility.samples = samples;
+    const bool keep_samples = samples > 1 && options.keep_samples;
+    visibility.sample_triangle.resize(keep_samples ? visibility.triangle.size() * size_t(samples) : 0);
+    visibility.sample_depth.resize(keep_samples ? visibility.depth.size() * size_t(samples) : 0);
     const bool run_passes = color || !passes.empty();
     std::atomic<uint64_t> visible_pixels{0};
     std::atomic<int64_t> pass_ns{0};
@@ -129,7 +169,8 @@ void Rasterizer::render(const Mesh& mesh, const glm::mat4& view_projection, cons
         TileScratch& scratch = s.scratch.local();
         TraceScope trace("raster tile", "tile", rect.x0, rect.y0);
         TileBuffers& buffers = scratch.buffers;
-        if (buffers.size != grid.size) buffers.clear(grid.size);  // else flush() cleared them
+        // Else flush() or the multisampled path below cleared them.
+        if (buffers.size != grid.size || buffers.samples != samples) buffers.clear(grid.size, samples);
         for (const ChunkBins& chunk : s.chunks)
             for (const TriangleSetup* e = chunk.begin(tile); e != chunk.end(tile); ++e) {
                 const TriangleSetup& t = *e;
@@ -138,9 +179,39 @@ void Rasterizer::render(const Mesh& mesh, const glm::mat4& view_projection, cons
                 else rasterize_opaque(t, rect, buffers);
             }
 
-        // Visibility out: stamp-swizzled tile to row-major frame.
         const int w = rect.width(), h = rect.height();
         const size_t origin = size_t(rect.y0) * viewport.width + rect.x0;
+        const auto context_for = [&](const Tile& tile, TileWork& work) {
+            TileContext context;
+            static_cast<Tile&>(context) = tile;
+            context.viewport = &viewport;
+            context.mesh = &mesh;
+            context.clip = &s.vertices;
+            context.work = &work;
+            return context;
+        };
+        if (samples > 1) {
+            multisampled_tile(buffers, rect, visibility, keep_samples, scratch.layers);
+            if (stats) visible_pixels += scratch.layers.covered_pixels();
+            if (!run_passes) return;
+            // The passes once per layer of distinct surfaces, resolved into the colour tile.
+            const auto pass_start = Clock::now();
+            scratch.color.resize(size_t(grid.size) * grid.size);
+            TileWork work{&s.chunks, tile, &scratch.fragments};
+            for (int j = 0; j < scratch.layers.layers(); ++j) {
+                const TileContext context = context_for(scratch.layers.layer(j, options.clear_color), work);
+                for (const TilePass& pass : passes) pass(context);
+                scratch.layers.accumulate(j, scratch.color.data(), size_t(grid.size));
+            }
+            if (color)
+                for (int y = 0; y < h; ++y)
+                    std::memcpy(color->data() + size_t(rect.y0 + y) * viewport.width + rect.x0,
+                                scratch.color.data() + size_t(y) * grid.size, size_t(w) * sizeof(glm::vec4));
+            if (stats) pass_ns += std::chrono::duration_cast<std::chrono::nanoseconds>(Clock::now() - pass_start).count();
+            return;
+        }
+
+        // Visibility out: stamp-swizzled tile to row-major frame.
         // Without passes nothing reads the tile again during the frame: stream it out.
         buffers.flush(w, h, options.depth_only ? nullptr : visibility.triangle.data() + origin,
                       visibility.depth.data() + origin, size_t(viewport.width), !run_passes);
@@ -156,17 +227,14 @@ void Rasterizer::render(const Mesh& mesh, const glm::mat4& view_projection, cons
         const auto pass_start = Clock::now();
         if (options.tile_color) scratch.color.assign(size_t(grid.size) * grid.size, options.clear_color);
         TileWork work{&s.chunks, tile, &scratch.fragments};
-        TileContext context;
-        context.rect = rect;
-        context.triangle = visibility.triangle.data() + origin;
-        context.depth = visibility.depth.data() + origin;
-        context.stride = size_t(viewport.width);
-        context.colour = options.tile_color ? scratch.color.data() : nullptr;
-        context.colour_stride = size_t(grid.size);
-        context.viewport = &viewport;
-        context.mesh = &mesh;
-        context.clip = &s.vertices;
-        context.work = &work;
+        Tile frame_part;
+        frame_part.rect = rect;
+        frame_part.triangle = visibility.triangle.data() + origin;
+        frame_part.depth = visibility.depth.data() + origin;
+        frame_part.stride = size_t(viewport.width);
+        frame_part.colour = options.tile_color ? scratch.color.data() : nullptr;
+        frame_part.colour_stride = size_t(grid.size);
+        const TileContext context = context_for(frame_part, work);
         for (const TilePass& pass : passes) pass(context);
         if (color)
             for (int y = 0; y < h; ++y)

@@ -2,7 +2,9 @@
 
 #include <algorithm>
 
+#include "raster/core/coverage_layers.h"
 #include "raster/pipeline/clip.h"
+#include "raster/pipeline/sample_pattern.h"
 #include "raster/pipeline/triangle_setup.h"
 #include "raster/pipeline/vertex_stage.h"
 
@@ -23,7 +25,7 @@ bool covers(const WindowVertex v[3], int64_t px, int64_t py) {
 }
 
 void draw(const WindowVertex& v0, const WindowVertex& v1, const WindowVertex& v2, uint32_t id,
-          const Viewport& viewport, CullMode cull, VisibilityBuffer& out) {
+          const Viewport& viewport, CullMode cull, std::span<const SampleOffset> pattern, VisibilityBuffer& out) {
     const int64_t area2 = int64_t(v1.X - v0.X) * (v2.Y - v0.Y) - int64_t(v1.Y - v0.Y) * (v2.X - v0.X);
     if (area2 == 0) return;
     const bool front = area2 < 0;  // counter-clockwise in NDC (y up) is clockwise on screen
@@ -38,12 +40,27 @@ void draw(const WindowVertex& v0, const WindowVertex& v1, const WindowVertex& v2
     const int64_t ymax = std::max({v0.Y, v1.Y, v2.Y}) / kSubpixels + 1;
     for (int64_t y = std::max<int64_t>(ymin, 0); y <= std::min<int64_t>(ymax, viewport.height - 1); ++y)
         for (int64_t x = std::max<int64_t>(xmin, 0); x <= std::min<int64_t>(xmax, viewport.width - 1); ++x) {
-            if (!covers(v, x * kSubpixels + kSubpixels / 2, y * kSubpixels + kSubpixels / 2)) continue;
-            const float z = plane.at(int(x), int(y));
-            const size_t i = size_t(y) * viewport.width + size_t(x);
-            if (z < out.depth[i]) {
-                out.depth[i] = z;
-                out.triangle[i] = id;
+            if (pattern.size() == 1) {
+                if (!covers(v, x * kSubpixels + kSubpixels / 2, y * kSubpixels + kSubpixels / 2)) continue;
+                const float z = plane.at(int(x), int(y));
+                const size_t i = size_t(y) * viewport.width + size_t(x);
+                if (z < out.depth[i]) {
+                    out.depth[i] = z;
+                    out.triangle[i] = id;
+                }
+                continue;
+            }
+            // Multisampled: the same rule at each sample position, 16 sub-pixels per 1/16.
+            for (size_t s = 0; s < pattern.size(); ++s) {
+                const int64_t px = x * kSubpixels + kSubpixels / 2 + 16 * pattern[s].x;
+                const int64_t py = y * kSubpixels + kSubpixels / 2 + 16 * pattern[s].y;
+                if (!covers(v, px, py)) continue;
+                const float z = plane.at_sample(int(x), int(y), pattern[s].x, pattern[s].y);
+                const size_t i = out.sample_index(int(x), int(y), int(s));
+                if (z < out.sample_depth[i]) {
+                    out.sample_depth[i] = z;
+                    out.sample_triangle[i] = id;
+                }
             }
         }
 }
@@ -52,7 +69,13 @@ void draw(const WindowVertex& v0, const WindowVertex& v1, const WindowVertex& v2
 
 void reference_rasterize(const Mesh& mesh, const glm::mat4& vp, const Viewport& viewport,
                          const RasterOptions& options, VisibilityBuffer& out) {
+    const std::span<const SampleOffset> pattern = sample_pattern(options.samples);
     out.reset(viewport.width, viewport.height);
+    if (options.samples > 1) {
+        out.samples = options.samples;
+        out.sample_triangle.assign(out.triangle.size() * size_t(options.samples), kNoTriangle);
+        out.sample_depth.assign(out.depth.size() * size_t(options.samples), 1.0f);
+    }
     for (size_t t = 0; t < mesh.triangle_count(); ++t) {
         if (!options.transparent.empty() && options.transparent[t]) continue;
         glm::vec4 clip[3];
@@ -76,8 +99,22 @@ void reference_rasterize(const Mesh& mesh, const glm::mat4& vp, const Viewport& 
                           : (std::copy(clip, clip + 3, polygon), 3);
         WindowVertex w[kMaxClippedVertices];
         for (int i = 0; i < n; ++i) w[i] = project_and_snap(viewport, polygon[i]);
-        for (int i = 1; i + 1 < n; ++i) draw(w[0], w[i], w[i + 1], uint32_t(t), viewport, options.cull, out);
+        for (int i = 1; i + 1 < n; ++i) draw(w[0], w[i], w[i + 1], uint32_t(t), viewport, options.cull, pattern, out);
     }
+    if (options.samples == 1) return;
+    // Each pixel's main surface, as the tile rasterizer reports it.
+    CoverageLayers layers;
+    layers.build(TileRect{0, 0, viewport.width, viewport.height}, options.samples, nullptr,
+                 [&](int x, int y, int s, uint32_t& triangle, float& depth) {
+                     triangle = out.sample_triangle[out.sample_index(x, y, s)];
+                     depth = out.sample_depth[out.sample_index(x, y, s)];
+                 });
+    const Tile primary = layers.layer(0, glm::vec4(0.0f));
+    for (int y = 0; y < viewport.height; ++y)
+        for (int x = 0; x < viewport.width; ++x) {
+            out.triangle[size_t(y) * viewport.width + x] = primary.triangle_at(x, y);
+            out.depth[size_t(y) * viewport.width + x] = primary.depth_at(x, y);
+        }
 }
 
 }  // namespace tessera::pipeline

@@ -15,7 +15,9 @@
 namespace tessera::pipeline {
 
 // Renders the opaque triangles of `mesh` (transparent ones per options are skipped) into
-// `visibility` with depth test LESS.
+// `visibility` with depth test LESS. With options.samples > 1, the rule at every sample
+// position of sample_pattern.h into visibility's per-sample arrays, and each pixel's main
+// surface into triangle and depth, as the tile rasterizer does.
 void reference_rasterize(const Mesh& mesh, const glm::mat4& view_projection, const Viewport& viewport,
                          const RasterOptions& options, VisibilityBuffer& visibility);
 

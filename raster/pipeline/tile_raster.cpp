@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <bit>
 #include <cstring>
+#include <span>
 
 #include "raster/core/visibility.h"
 
@@ -26,14 +27,15 @@ struct EdgeLanes {
     int32_t f;
     int32_t step_x, step_y;  // per stamp
     vint offset;
+    bool accepted;  // inside over the whole region, at every sample
 };
 
 EdgeLanes edge_lanes(int32_t f, int32_t dx, int32_t dy) {
-    return {f, -dy * kStampW, dx * kStampH, simd::stamp_x() * vint(-dy) + simd::stamp_y() * vint(dx)};
+    return {f, -dy * kStampW, dx * kStampH, simd::stamp_x() * vint(-dy) + simd::stamp_y() * vint(dx), false};
 }
 
 // An edge that is inside over the whole region: F = 0 everywhere passes "F >= 0".
-EdgeLanes accepted_edge() { return {0, 0, 0, vint(0)}; }
+EdgeLanes accepted_edge() { return {0, 0, 0, vint(0), true}; }
 
 // Visits the stamps with corners (sx, sy), sx0 <= sx <= sx1, sy0 <= sy <= sy1 (stamp-aligned,
 // frame coordinates): coverage from the three edges, depth from the plane. sink(index of the
@@ -107,18 +109,133 @@ inline void fill_stamps(const DepthPlane& plane, int sx0, int sy0, int sx1, int 
     }
 }
 
+// The samples of a multisampled render as traversal uses them for one triangle: per sample
+// and edge the exact change of F from the pixel centre (sample_offset()), their range per
+// edge, and the sample's position in pixels from the centre (for the depth plane).
+struct SampleLanes {
+    int count = 0;
+    int32_t offset[3][kMaxSamples];
+    int32_t lo[3], hi[3];
+    float ox[kMaxSamples], oy[kMaxSamples];
+
+    SampleLanes(const TriangleSetup& t, std::span<const SampleOffset> pattern) : count(int(pattern.size())) {
+        for (int i = 0; i < 3; ++i) {
+            lo[i] = hi[i] = sample_offset(t, i, pattern[0].x, pattern[0].y);
+            for (int s = 0; s < count; ++s) {
+                offset[i][s] = sample_offset(t, i, pattern[s].x, pattern[s].y);
+                lo[i] = std::min(lo[i], offset[i][s]);
+                hi[i] = std::max(hi[i], offset[i][s]);
+            }
+        }
+        for (int s = 0; s < count; ++s) {
+            ox[s] = float(pattern[s].x) * (1.0f / 16.0f);
+            oy[s] = float(pattern[s].y) * (1.0f / 16.0f);
+        }
+    }
+};
+
+// traverse_stamps for several samples per pixel: coverage per sample from the edge values
+// moved by the sample's offsets, depth from the plane at the sample. sink(index of the stamp,
+// corner x, corner y, sample, coverage, depth) per sample of a stamp with any coverage.
+template <bool kBranchless, class Sink>
+inline void traverse_sample_stamps(const DepthPlane& plane, const EdgeLanes (&e)[3], const SampleLanes& samples,
+                                   int sx0, int sy0, int sx1, int sy1, const TileRect& tile, int tile_size,
+                                   Sink&& sink) {
+    const vfloat lane_x = simd::to_float(simd::stamp_x());
+    const vfloat lane_y = simd::to_float(simd::stamp_y());
+    const vfloat a(plane.a), b(plane.b), c(plane.c);
+    const int n = samples.count;
+    vint row0 = vint(e[0].f) + e[0].offset, row1 = vint(e[1].f) + e[1].offset, row2 = vint(e[2].f) + e[2].offset;
+    const vint step_x0(e[0].step_x), step_x1(e[1].step_x), step_x2(e[2].step_x);
+    const vint step_y0(e[0].step_y), step_y1(e[1].step_y), step_y2(e[2].step_y);
+    const bool exit0 = e[0].step_x <= 0, exit1 = e[1].step_x <= 0, exit2 = e[2].step_x <= 0;
+    // An accepted edge (F = 0 everywhere) stays accepted at every sample: no offsets.
+    const bool accepted[3] = {e[0].accepted, e[1].accepted, e[2].accepted};
+    const vint hi0(accepted[0] ? 0 : samples.hi[0]), hi1(accepted[1] ? 0 : samples.hi[1]),
+        hi2(accepted[2] ? 0 : samples.hi[2]);
+    int32_t off[3][kMaxSamples];
+    for (int i = 0; i < 3; ++i)
+        for (int s = 0; s < n; ++s) off[i][s] = accepted[i] ? 0 : samples.offset[i][s];
+    const vint zero(0);
+    const unsigned stamps_per_row = unsigned(tile_size / kStampW);
+    for (int sy = sy0; sy <= sy1; sy += kStampH) {
+        const vfloat y_row = vfloat(float(sy - plane.ay)) + lane_y;
+        vint f0 = row0, f1 = row1, f2 = row2;
+        float fx = float(sx0 - plane.ax);
+        size_t index = (unsigned(sy - tile.y0) / kStampH * stamps_per_row + unsigned(sx0 - tile.x0) / kStampW) * kLanes;
+        for (int sx = sx0; sx <= sx1; sx += kStampW, index += kLanes, fx += float(kStampW)) {
+            vmask covered[kMaxSamples];
+            vmask any_covered(false);
+            for (int s = 0; s < n; ++s) {
+                covered[s] = ((f0 + vint(off[0][s])) | (f1 + vint(off[1][s])) | (f2 + vint(off[2][s]))) >= zero;
+                any_covered = any_covered | covered[s];
+            }
+            if (kBranchless || simd::any(any_covered)) {
+                const vfloat x = vfloat(fx) + lane_x;
+                for (int s = 0; s < n; ++s) {
+                    // DepthPlane::at_sample: x - ax + ox, y - ay + oy, exact in float.
+                    vfloat z = simd::fma(a, x + vfloat(samples.ox[s]), simd::fma(b, y_row + vfloat(samples.oy[s]), c));
+                    z = simd::min(simd::max(z, vfloat(0.0f)), vfloat(1.0f));
+                    sink(index, sx, sy, s, covered[s], z);
+                }
+            } else if ((exit0 && !simd::any((f0 + hi0) >= zero)) || (exit1 && !simd::any((f1 + hi1) >= zero)) ||
+                       (exit2 && !simd::any((f2 + hi2) >= zero))) {
+                break;
+            }
+            f0 = f0 + step_x0;
+            f1 = f1 + step_x1;
+            f2 = f2 + step_x2;
+        }
+        row0 = row0 + step_y0;
+        row1 = row1 + step_y1;
+        row2 = row2 + step_y2;
+    }
+}
+
+// fill_stamps for several samples per pixel: every sample covered, depth per sample.
+template <class Sink>
+inline void fill_sample_stamps(const DepthPlane& plane, const SampleLanes& samples, int sx0, int sy0, int sx1,
+                               int sy1, const TileRect& tile, int tile_size, Sink&& sink) {
+    const vfloat lane_x = simd::to_float(simd::stamp_x());
+    const vfloat lane_y = simd::to_float(simd::stamp_y());
+    const vfloat a(plane.a), b(plane.b), c(plane.c);
+    const vmask all(true);
+    const unsigned stamps_per_row = unsigned(tile_size / kStampW);
+    for (int sy = sy0; sy <= sy1; sy += kStampH) {
+        const vfloat y_row = vfloat(float(sy - plane.ay)) + lane_y;
+        float fx = float(sx0 - plane.ax);
+        size_t index = (unsigned(sy - tile.y0) / kStampH * stamps_per_row + unsigned(sx0 - tile.x0) / kStampW) * kLanes;
+        for (int sx = sx0; sx <= sx1; sx += kStampW, index += kLanes, fx += float(kStampW)) {
+            const vfloat x = vfloat(fx) + lane_x;
+            for (int s = 0; s < samples.count; ++s) {
+                vfloat z = simd::fma(a, x + vfloat(samples.ox[s]), simd::fma(b, y_row + vfloat(samples.oy[s]), c));
+                z = simd::min(simd::max(z, vfloat(0.0f)), vfloat(1.0f));
+                sink(index, sx, sy, s, all, z);
+            }
+        }
+    }
+}
+
 // F_i at pixel (x, y), from the setup's value at (minx, miny); exact in int64.
 int64_t edge_at(const TriangleSetup& t, int i, int x, int y) {
     return t.f[i] + int64_t(t.dx[i]) * (y - t.miny) - int64_t(t.dy[i]) * (x - t.minx);
 }
 
-// Traverses the part of triangle `t` inside `tile`, calling sink as traverse_stamps does.
-template <class Sink>
-inline void traverse(const TriangleSetup& t, const TileRect& tile, int tile_size, Sink&& sink) {
+// Traverses the part of triangle `t` inside `tile`, calling sink as traverse_stamps does, or,
+// with `samples` (multisampling), as traverse_sample_stamps does.
+template <bool kMulti, class Sink>
+inline void traverse(const TriangleSetup& t, const TileRect& tile, int tile_size, const SampleLanes* samples,
+                     Sink&& sink) {
     const int x0 = std::max<int>(t.minx, tile.x0), x1 = std::min<int>(t.maxx, tile.x1 - 1);
     const int y0 = std::max<int>(t.miny, tile.y0), y1 = std::min<int>(t.maxy, tile.y1 - 1);
     if (x0 > x1 || y0 > y1) return;
     const int sx0 = x0 & ~(kStampW - 1), sy0 = y0 & ~(kStampH - 1);
+    const auto partial = [&]<bool kBranchless>(const EdgeLanes (&lanes)[3], int px0, int py0, int px1, int py1) {
+        if constexpr (kMulti)
+            traverse_sample_stamps<kBranchless>(t.depth, lanes, *samples, px0, py0, px1, py1, tile, tile_size, sink);
+        else
+            traverse_stamps<kBranchless>(t.depth, lanes, px0, py0, px1, py1, tile, tile_size, sink);
+    };
     if (t.small) {
         // Small triangle: int32 is exact anywhere within a few pixels of its box, F at
         // (minx, miny) included (fixed_point.h).
@@ -126,13 +243,14 @@ inline void traverse(const TriangleSetup& t, const TileRect& tile, int tile_size
         for (int i = 0; i < 3; ++i)
             lanes[i] = edge_lanes(int32_t(t.f[i]) + t.dx[i] * (sy0 - t.miny) - t.dy[i] * (sx0 - t.minx), t.dx[i], t.dy[i]);
         if (x1 - sx0 < kTinyExtent && y1 - sy0 < kTinyExtent)
-            traverse_stamps<true>(t.depth, lanes, sx0, sy0, x1, y1, tile, tile_size, sink);
+            partial.template operator()<true>(lanes, sx0, sy0, x1, y1);
         else
-            traverse_stamps<false>(t.depth, lanes, sx0, sy0, x1, y1, tile, tile_size, sink);
+            partial.template operator()<false>(lanes, sx0, sy0, x1, y1);
         return;
     }
     // Big triangle: per 16x16 block, reject when an edge is negative over the whole block,
     // accept edges positive over it, and step the others in int32 from the block's corner.
+    // With samples, the range of an edge over the block widens by its sample offsets.
     constexpr int64_t kSpan = kBlock - 1;
     for (int by = y0 & ~(kBlock - 1); by <= y1; by += kBlock) {
         for (int bx = x0 & ~(kBlock - 1); bx <= x1; bx += kBlock) {
@@ -143,8 +261,10 @@ inline void traverse(const TriangleSetup& t, const TileRect& tile, int tile_size
             for (int i = 0; i < 3 && !rejected; ++i) {
                 const int64_t f = edge_at(t, i, bx, by);
                 const int64_t dx = t.dx[i], dy = t.dy[i];
-                const int64_t lo = f + std::min<int64_t>(0, -dy) * kSpan + std::min<int64_t>(0, dx) * kSpan;
-                const int64_t hi = f + std::max<int64_t>(0, -dy) * kSpan + std::max<int64_t>(0, dx) * kSpan;
+                const int64_t lo = f + std::min<int64_t>(0, -dy) * kSpan + std::min<int64_t>(0, dx) * kSpan +
+                                   (kMulti ? samples->lo[i] : 0);
+                const int64_t hi = f + std::max<int64_t>(0, -dy) * kSpan + std::max<int64_t>(0, dx) * kSpan +
+                                   (kMulti ? samples->hi[i] : 0);
                 if (hi < 0) rejected = true;
                 else if (lo >= 0) lanes[i] = accepted_edge(), full[i] = true;
                 else lanes[i] = edge_lanes(int32_t(edge_at(t, i, px0, py0)), t.dx[i], t.dy[i]);
@@ -152,19 +272,21 @@ inline void traverse(const TriangleSetup& t, const TileRect& tile, int tile_size
             if (rejected) continue;
             const int bx1 = std::min(bx + kBlock - 1, x1), by1 = std::min(by + kBlock - 1, y1);
             if (full[0] && full[1] && full[2]) {  // inside the triangle: depth only
-                fill_stamps(t.depth, px0, py0, bx1, by1, tile, tile_size, sink);
+                if constexpr (kMulti) fill_sample_stamps(t.depth, *samples, px0, py0, bx1, by1, tile, tile_size, sink);
+                else fill_stamps(t.depth, px0, py0, bx1, by1, tile, tile_size, sink);
                 continue;
             }
-            traverse_stamps<false>(t.depth, lanes, px0, py0, bx1, by1, tile, tile_size, sink);
+            partial.template operator()<false>(lanes, px0, py0, bx1, by1);
         }
     }
 }
 
 }  // namespace
 
-void TileBuffers::clear(int tile_size) {
+void TileBuffers::clear(int tile_size, int sample_count) {
     size = tile_size;
-    const size_t n = size_t(tile_size) * size_t(tile_size);
+    samples = sample_count;
+    const size_t n = size_t(tile_size) * size_t(tile_size) * size_t(sample_count);
     depth.resize(n);
     triangle.resize(n);
     const vfloat one(1.0f);
@@ -223,14 +345,25 @@ void TileBuffers::flush(int width, int height, uint32_t* triangle_out, float* de
     if (stream) simd::stream_fence();
     // A partial tile leaves stamp rows below `height` uncopied and uncleared (and traversal
     // may have covered lanes past the viewport's edge): clear it all.
-    if (width < size || height < size) clear(size);
+    if (width < size || height < size) clear(size, samples);
 }
 
 void rasterize_opaque(const TriangleSetup& t, const TileRect& tile, TileBuffers& buffers) {
     float* depth = buffers.depth.data();
     uint32_t* ids = buffers.triangle.data();
     const vint id(int32_t(t.triangle));
-    traverse(t, tile, buffers.size, [&](size_t index, int, int, vmask covered, vfloat z) {
+    if (buffers.samples > 1) {
+        const SampleLanes samples(t, sample_pattern(buffers.samples));
+        const size_t plane = buffers.plane();
+        traverse<true>(t, tile, buffers.size, &samples, [&](size_t index, int, int, int s, vmask covered, vfloat z) {
+            const size_t i = size_t(s) * plane + index;
+            const vmask pass = covered & (z < vfloat::load(depth + i));
+            simd::store_masked(depth + i, pass, z);
+            simd::store_masked(ids + i, pass, id);
+        });
+        return;
+    }
+    traverse<false>(t, tile, buffers.size, nullptr, [&](size_t index, int, int, vmask covered, vfloat z) {
         const vmask pass = covered & (z < vfloat::load(depth + index));
         simd::store_masked(depth + index, pass, z);
         simd::store_masked(ids + index, pass, id);
@@ -239,7 +372,16 @@ void rasterize_opaque(const TriangleSetup& t, const TileRect& tile, TileBuffers&
 
 void rasterize_depth(const TriangleSetup& t, const TileRect& tile, TileBuffers& buffers) {
     float* depth = buffers.depth.data();
-    traverse(t, tile, buffers.size, [&](size_t index, int, int, vmask covered, vfloat z) {
+    if (buffers.samples > 1) {
+        const SampleLanes samples(t, sample_pattern(buffers.samples));
+        const size_t plane = buffers.plane();
+        traverse<true>(t, tile, buffers.size, &samples, [&](size_t index, int, int, int s, vmask covered, vfloat z) {
+            float* d = depth + size_t(s) * plane + index;
+            simd::store_masked(d, covered & (z < vfloat::load(d)), z);
+        });
+        return;
+    }
+    traverse<false>(t, tile, buffers.size, nullptr, [&](size_t index, int, int, vmask covered, vfloat z) {
         simd::store_masked(depth + index, covered & (z < vfloat::load(depth + index)), z);
     });
 }
@@ -250,7 +392,7 @@ size_t rasterize_tested(const TriangleSetup& t, const TileRect& tile, const floa
     alignas(64) float z_lanes[kLanes];
     size_t n = 0;
     const int tile_size = 1 << 8;  // any stamp-aligned width works: indices are unused here
-    traverse(t, tile, tile_size, [&](size_t, int sx, int sy, vmask covered, vfloat z) {
+    traverse<false>(t, tile, tile_size, nullptr, [&](size_t, int sx, int sy, vmask covered, vfloat z) {
         z.store(z_lanes);
         for (uint32_t bits = simd::bits(covered); bits; bits &= bits - 1) {
             const int lane = std::countr_zero(bits);

@@ -9,27 +9,31 @@
 #include "raster/core/aligned_vector.h"
 #include "raster/core/tile.h"
 #include "raster/simd/simd.h"
+#include "raster/pipeline/sample_pattern.h"
 #include "raster/pipeline/triangle_setup.h"
 
 namespace tessera::pipeline {
 
 // A tile's depth and triangle ids, small enough to stay in L1/L2 while every triangle of the
 // tile is drawn. Stamp-swizzled: the kLanes pixels of one stamp are contiguous (one aligned
-// vector), stamps in row-major order.
+// vector), stamps in row-major order. Multisampled (samples > 1, sample_pattern.h): one such
+// plane per sample, sample s at s * plane().
 struct TileBuffers {
     int size = 0;
+    int samples = 1;
     AlignedVector<float> depth;
     AlignedVector<uint32_t> triangle;
     AlignedVector<uint32_t> rows;  // flush(): kStampH rows of the tile in row-major order
 
-    void clear(int tile_size);  // depth 1.0, no triangle
+    void clear(int tile_size, int sample_count = 1);  // depth 1.0, no triangle
+    size_t plane() const { return size_t(size) * size_t(size); }
     // Copies the tile's pixels [0, width) x [0, height) to row-major triangle / depth arrays
     // with `stride` elements per row (pointing at the tile's first pixel; triangle_out null:
     // depth only, the ids were not written), and leaves the
     // buffers cleared for the next tile of the same size. `stream`: with non-temporal stores
     // (simd::stream_copy) where the rows start on cache lines, for output that is not read
     // again soon; they skip reading each destination line first, which is most of the
-    // copy's cost once the frame is out of cache.
+    // copy's cost once the frame is out of cache. Single-sampled buffers only.
     void flush(int width, int height, uint32_t* triangle_out, float* depth_out, size_t stride,
                bool stream);
     // Index of tile-local pixel (x, y) in the arrays.
@@ -39,7 +43,8 @@ struct TileBuffers {
     }
 };
 
-// Depth test LESS and write of one opaque triangle into the tile.
+// Depth test LESS and write of one opaque triangle into the tile (per sample when the buffers
+// are multisampled: coverage and depth at each sample position with the same fill rule).
 void rasterize_opaque(const TriangleSetup& t, const TileRect& tile, TileBuffers& buffers);
 // The same without triangle ids (depth-only renders: shadow maps).
 void rasterize_depth(const TriangleSetup& t, const TileRect& tile, TileBuffers& buffers);

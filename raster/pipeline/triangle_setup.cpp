@@ -43,9 +43,16 @@ float DepthPlane::at(int x, int y) const {
     return std::min(std::max(z, 0.0f), 1.0f);
 }
 
+float DepthPlane::at_sample(int x, int y, int ox, int oy) const {
+    const float fx = float(x - ax) + float(ox) * (1.0f / 16.0f);
+    const float fy = float(y - ay) + float(oy) * (1.0f / 16.0f);
+    const float z = std::fma(a, fx, std::fma(b, fy, c));
+    return std::min(std::max(z, 0.0f), 1.0f);
+}
+
 SetupResult setup_triangle(const WindowVertex& v0, const WindowVertex& v1_in,
                            const WindowVertex& v2_in, CullMode cull, const Viewport& viewport,
-                           TriangleSetup& out) {
+                           TriangleSetup& out, int samples) {
     WindowVertex v1 = v1_in, v2 = v2_in;
     // Twice the signed area in sub-pixels^2 (fixed_point.h: |.| <= 2^47).
     const int64_t area2 = int64_t(v1.X - v0.X) * (v2.Y - v0.Y) - int64_t(v1.Y - v0.Y) * (v2.X - v0.X);
@@ -58,11 +65,13 @@ SetupResult setup_triangle(const WindowVertex& v0, const WindowVertex& v1_in,
 
     const int32_t xmin = std::min(v0.X, std::min(v1.X, v2.X)), xmax = std::max(v0.X, std::max(v1.X, v2.X));
     const int32_t ymin = std::min(v0.Y, std::min(v1.Y, v2.Y)), ymax = std::max(v0.Y, std::max(v1.Y, v2.Y));
-    // Pixels whose centre 256x + 128 lies within [xmin, xmax].
-    const int32_t minx = std::max((xmin + kSubpixels / 2 - 1) >> kSubpixelBits, 0);
-    const int32_t maxx = std::min((xmax - kSubpixels / 2) >> kSubpixelBits, viewport.width - 1);
-    const int32_t miny = std::max((ymin + kSubpixels / 2 - 1) >> kSubpixelBits, 0);
-    const int32_t maxy = std::min((ymax - kSubpixels / 2) >> kSubpixelBits, viewport.height - 1);
+    // Pixels whose centre 256x + 128 lies within [xmin, xmax]; with several samples, pixels
+    // with a sample position 256x + 128 + 16o, o in [-8, 7], that may.
+    const int32_t lo = samples > 1 ? 0 : kSubpixels / 2 - 1, hi = samples > 1 ? 0 : kSubpixels / 2;
+    const int32_t minx = std::max((xmin + lo) >> kSubpixelBits, 0);
+    const int32_t maxx = std::min((xmax - hi) >> kSubpixelBits, viewport.width - 1);
+    const int32_t miny = std::max((ymin + lo) >> kSubpixelBits, 0);
+    const int32_t maxy = std::min((ymax - hi) >> kSubpixelBits, viewport.height - 1);
     if (minx > maxx || miny > maxy) return SetupResult::no_samples;
 
     // E(P) = dX*(Py - Ya) - dY*(Px - Xa) at P = (256x + 128, 256y + 128) equals
@@ -73,6 +82,7 @@ SetupResult setup_triangle(const WindowVertex& v0, const WindowVertex& v1_in,
         const int64_t K = int64_t(dX) * (kSubpixels / 2 - a.Y) - int64_t(dY) * (kSubpixels / 2 - a.X) -
                           (is_top_left(dX, dY) ? 0 : 1);
         out.f[i] = int64_t(dX) * miny - int64_t(dY) * minx + (K >> kSubpixelBits);
+        out.residue[i] = uint8_t(K & (kSubpixels - 1));
         out.dx[i] = dX;
         out.dy[i] = dY;
     };

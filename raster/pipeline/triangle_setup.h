@@ -33,6 +33,9 @@ struct DepthPlane {
 
     static DepthPlane from(const WindowVertex& v0, const WindowVertex& v1, const WindowVertex& v2);
     float at(int x, int y) const;
+    // At the sample (ox, oy) / 16 pixels from the centre of pixel (x, y) (sample_pattern.h):
+    // the same expression with x - ax + ox / 16 and y - ay + oy / 16, still exact in float.
+    float at_sample(int x, int y, int ox, int oy) const;
 };
 
 enum class CullMode { none, back, front };  // front faces are counter-clockwise in NDC (GL)
@@ -48,8 +51,12 @@ struct TriangleSetup {
     DepthPlane depth;
     int16_t minx, miny, maxx, maxy;  // inclusive pixel box of the samples, within the viewport
     uint32_t triangle;    // id in the mesh (submission order)
-    uint8_t small;        // vertex box < kSmallExtent: int32 traversal anywhere near the box
-    uint8_t transparent;  // rasterized after the opaque pass, without depth writes
+    uint8_t small : 1;        // vertex box < kSmallExtent: int32 traversal anywhere near the box
+    uint8_t transparent : 1;  // rasterized after the opaque pass, without depth writes
+    // Per edge, K mod 256 for the edge's constant K at the pixel centre (triangle_setup.cpp):
+    // what the reduced edge function needs to move exactly to another sample of the pixel
+    // (sample_offset()).
+    uint8_t residue[3];
 };
 static_assert(sizeof(TriangleSetup) == 80, "bins copy setups: keep them compact");
 
@@ -58,8 +65,19 @@ enum class SetupResult { drawn, zero_area, culled_face, no_samples };
 // Sets up triangle v0 v1 v2 (in submission winding) for `viewport`. Returns drawn when `out`
 // holds a triangle whose box holds at least one pixel centre of the viewport; a sliver between
 // pixel centres may still cover none of them (traversal finds that out).
+//
+// samples > 1 (multisampling, sample_pattern.h): the box holds the pixels any of whose samples
+// may lie within the vertices' box, and "drawn" means it holds at least one pixel.
 SetupResult setup_triangle(const WindowVertex& v0, const WindowVertex& v1, const WindowVertex& v2,
-                           CullMode cull, const Viewport& viewport, TriangleSetup& out);
+                           CullMode cull, const Viewport& viewport, TriangleSetup& out, int samples = 1);
+
+// How much the reduced edge function F_i of `t` at a pixel changes from the pixel centre to
+// the sample (ox, oy) / 16 pixels away: F_i(sample) = F_i(centre) + sample_offset(t, i, ox, oy)
+// with the same fill rule, exactly (floor((residue + 16 (dX oy - dY ox)) / 256)).
+inline int32_t sample_offset(const TriangleSetup& t, int i, int ox, int oy) {
+    const int64_t k = int64_t(t.residue[i]) + 16 * (int64_t(t.dx[i]) * oy - int64_t(t.dy[i]) * ox);
+    return int32_t(k >> kSubpixelBits);
+}
 
 // D3D11.3 §3.4.2.1 top-left rule for an edge with delta (dX, dY) in top-down window
 // coordinates whose inside lies where dX*(Py - Ya) - dY*(Px - Xa) > 0: a "left" edge goes up
