@@ -118,6 +118,37 @@ TEST(EmbreeVersusRaster, SphereGridAgreesExceptExactEdges) {
     EXPECT_EQ(c.depth_beyond_snapping, 0u);
 }
 
+// Multisampled: one ray per sample position, the rasterizer's coverage per sample; they see
+// the same triangle at every sample except near edges (the rasterizer snaps vertices).
+TEST(EmbreeVersusRaster, SphereGridAgreesSampleForSample) {
+    const workloads::SphereGridScene grid = workloads::make_sphere_grid(20000, 4.0f / 3.0f);
+    const int w = 200, h = 150, samples = 4;
+    const glm::mat4 vp = grid.camera.view_projection();
+    VisibilityBuffer raster, rays;
+    pipeline::RasterOptions options;
+    options.samples = samples;
+    options.keep_samples = true;
+    pipeline::Rasterizer rasterizer;
+    rasterizer.render(grid.mesh, vp, pipeline::Viewport(w, h), options, raster);
+    const RayScene scene(default_ray_device(), grid.mesh);
+    cast_primary_rays(scene, vp, w, h, rays, RayPacket::x16, {}, samples);
+    ASSERT_EQ(rays.sample_triangle.size(), size_t(w) * h * samples);
+    size_t covered = 0, differ = 0, depth_far = 0;
+    for (size_t i = 0; i < rays.sample_triangle.size(); ++i) {
+        covered += raster.sample_triangle[i] != kNoTriangle;
+        differ += raster.sample_triangle[i] != rays.sample_triangle[i];
+        if (raster.sample_triangle[i] == rays.sample_triangle[i] && rays.sample_triangle[i] != kNoTriangle)
+            depth_far += std::abs(raster.sample_depth[i] - rays.sample_depth[i]) > 1e-4f;
+    }
+    EXPECT_GT(covered, size_t(w) * h * samples / 4);
+    EXPECT_LT(differ, covered / 200);  // edges are rare
+    EXPECT_EQ(depth_far, 0u);
+    // The main surface of a pixel agrees as often.
+    size_t pixel_differ = 0;
+    for (size_t p = 0; p < raster.triangle.size(); ++p) pixel_differ += raster.triangle[p] != rays.triangle[p];
+    EXPECT_LT(pixel_differ, raster.triangle.size() / 100);
+}
+
 TEST(EmbreeVersusRaster, RandomTrianglesThroughAPerspectiveCameraAgree) {
     Camera camera;
     camera.eye = {0.5f, 0.3f, 4.0f};

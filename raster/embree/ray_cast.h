@@ -26,9 +26,14 @@ enum class RayPacket { single = 1, x8 = 8, x16 = 16 };
 // Resets `out` to width x height and fills it. Rays pass through the triangles t with
 // skip[t] != 0 (transparent ones, blended afterwards as the rasterizer does: its opaque pass
 // leaves them out too); `skip` is empty or has one entry per triangle. Throws
-// std::invalid_argument for a non-positive size or a `skip` of the wrong length.
+// std::invalid_argument for a non-positive size, a `skip` of the wrong length or a bad
+// sample count.
+//
+// samples > 1: one ray per sample position of sample_pattern.h (the rasterizer's), depth
+// from the hit triangle's plane at the sample, into out's per-sample arrays, and each
+// pixel's main surface into triangle and depth, as the rasterizer's multisampled renders.
 void cast_primary_rays(const RayScene& scene, const glm::mat4& view_projection, int width,
                        int height, VisibilityBuffer& out, RayPacket packet = RayPacket::x16,
-                       std::span<const uint8_t> skip = {});
+                       std::span<const uint8_t> skip = {}, int samples = 1);
 
 }  // namespace tessera::embree

@@ -35,8 +35,9 @@ void collect_filter(const RTCFilterFunctionNArguments* args) {
 }  // namespace
 
 void for_each_transparent_hit(const RayScene& scene, const PixelRays& rays, std::span<const uint8_t> transparent,
-                              const VisibilityBuffer& opaque, const TileRect& tile,
+                              const Tile& opaque,
                               const std::function<void(uint32_t, std::span<const pipeline::Fragment>)>& blend) {
+    const TileRect& tile = opaque.rect;
     using P = Packet<16>;
     std::vector<Hit> hits;
     CollectContext collect{coherent_context(), transparent.data(), &hits};
@@ -68,8 +69,7 @@ void for_each_transparent_hit(const RayScene& scene, const PixelRays& rays, std:
                     mesh.positions[index[0]], mesh.positions[index[1]], mesh.positions[index[2]]);
                 if (!plane.valid) continue;  // seen edge-on: the rasterizer draws nothing either
                 const float depth = plane.at(x + 0.5, y + 0.5);
-                const size_t pixel = size_t(y) * size_t(opaque.width) + size_t(x);
-                if (depth < opaque.depth[pixel] && depth >= 0.0f)
+                if (depth < opaque.depth_at(x, y) && depth >= 0.0f)
                     found.push_back({h.triangle, pipeline::Fragment{uint16_t(x), uint16_t(y), depth}});
             }
         }

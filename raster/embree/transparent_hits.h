@@ -20,10 +20,11 @@
 
 namespace tessera::embree {
 
-// Calls blend(triangle, its fragments in `tile`) once per transparent triangle (transparent[t]
-// != 0) seen in front of `opaque`, in increasing triangle id, fragments in row order.
+// Calls blend(triangle, its fragments in the tile) once per transparent triangle
+// (transparent[t] != 0) seen in front of the depth of `opaque`, in increasing triangle id,
+// fragments in row order.
 void for_each_transparent_hit(const RayScene& scene, const PixelRays& rays, std::span<const uint8_t> transparent,
-                              const VisibilityBuffer& opaque, const TileRect& tile,
+                              const Tile& opaque,
                               const std::function<void(uint32_t triangle, std::span<const pipeline::Fragment>)>& blend);
 
 }  // namespace tessera::embree

@@ -49,11 +49,20 @@ public:
     void run(const Tile& target) const {
         typename Surface::Scratch scratch{};
         for (int y = target.rect.y0; y < target.rect.y1; ++y)
-            for (int x = target.rect.x0; x < target.rect.x1; x += kMarchLanes)
-                run_packet(target, x, y, std::min(kMarchLanes, target.rect.x1 - x), scratch);
+            for (int x = target.rect.x0; x < target.rect.x1; x += kMarchLanes) {
+                const int count = std::min(kMarchLanes, target.rect.x1 - x);
+                if (target.coverage && !any_active(target, x, y, count)) continue;  // tile.h
+                run_packet(target, x, y, count, scratch);
+            }
     }
 
 private:
+    static bool any_active(const Tile& target, int x0, int y, int count) {
+        for (int i = 0; i < count; ++i)
+            if (target.active(x0 + i, y)) return true;
+        return false;
+    }
+
     void run_packet(const Tile& target, int x0, int y, int count,
                     typename Surface::Scratch& scratch) const {
         RayPacket packet;

@@ -1,5 +1,6 @@
 #include "raster/render/frame_renderer.h"
 
+#include <tbb/enumerable_thread_specific.h>
 #include <tbb/parallel_for.h>
 
 #include <algorithm>
@@ -13,6 +14,7 @@
 #include <string>
 #include <vector>
 
+#include "raster/core/coverage_layers.h"
 #include "raster/embree/device.h"
 #include "raster/core/pixel_rays.h"
 #include "raster/core/tile.h"
@@ -104,6 +106,7 @@ struct FrameRenderer::Impl {
     int width, height;
     RendererKind renderer;
     ShadowMode shadows;
+    int samples;
     pipeline::Rasterizer rasterizer;
     std::optional<embree::RayDevice> device;
     std::vector<procedural::TerrainField> terrains;  // one per terrain pass, built once
@@ -111,8 +114,11 @@ struct FrameRenderer::Impl {
     // Reused from frame to frame (and region to region): its pages are touched once.
     VisibilityBuffer visibility;
 
-    Impl(AnimatedScene& s, int w, int h, RendererKind r, ShadowMode sh)
-        : scene(s), width(w), height(h), renderer(r), shadows(sh) {
+    // Multisampled ray casting: each thread's layers of the tile in hand.
+    tbb::enumerable_thread_specific<CoverageLayers> layers;
+
+    Impl(AnimatedScene& s, int w, int h, RendererKind r, ShadowMode sh, int n)
+        : scene(s), width(w), height(h), renderer(r), shadows(sh), samples(n) {
         for (const PassSpec& p : scene.passes)
             if (p.kind == PassSpec::Kind::terrain) terrains.emplace_back(p.terrain);
     }
@@ -136,12 +142,14 @@ struct FrameRenderer::Impl {
 };
 
 FrameRenderer::FrameRenderer(AnimatedScene& scene, int width, int height, RendererKind renderer,
-                             ShadowMode shadows) {
+                             ShadowMode shadows, int samples) {
     if (width <= 0 || height <= 0) throw std::invalid_argument("frame size must be positive");
+    if (!pipeline::valid_sample_count(samples))
+        throw std::invalid_argument("--samples: " + std::to_string(samples) + " is not a sample count (expected 1, 4, 8 or 16)");
     if (shadows != ShadowMode::none && scene.scene.lights.size() > 4)
         throw std::invalid_argument("--shadows: at most 4 lights cast shadows, the scene has " +
                                     std::to_string(scene.scene.lights.size()));
-    impl_ = std::make_unique<Impl>(scene, width, height, renderer, shadows);
+    impl_ = std::make_unique<Impl>(scene, width, height, renderer, shadows, samples);
     if (renderer == RendererKind::raytrace || shadows == ShadowMode::rays) impl_->device.emplace();
 }
 
@@ -315,7 +323,7 @@ void FrameRenderer::Impl::shade_shadows(const FrameState& frame, const RegionPas
                                         std::atomic<uint64_t>& shadowed) const {
     TraceScope t("shadow test", "tile");
     shadow::SurfacePoints points;
-    shadow::gather_surface_points(visibility, frame.baked.mesh, passes.pixel_rays, tile.rect, points);
+    shadow::gather_surface_points(tile, size_t(visibility.width), frame.baked.mesh, passes.pixel_rays, points);
     std::vector<uint8_t> lit(points.size(), 0), facing(points.size(), 0);
     shadow::facing_lights(points, frame.light_targets, facing);
     frame.light_test(points, frame.light_targets, lit);
@@ -326,7 +334,7 @@ void FrameRenderer::Impl::shade_shadows(const FrameState& frame, const RegionPas
         const uint32_t mask = (lit[i] | ~facing[i]) & all_lit;
         if (mask == all_lit) continue;
         const uint32_t p = points.pixel[i];
-        groups[mask].push_back({int(p % w), int(p / w), visibility.triangle[p]});
+        groups[mask].push_back({int(p % w), int(p / w), tile.triangle_at(int(p % w), int(p / w))});
     }
     std::vector<glm::vec4> colours;
     for (uint32_t mask = 0; mask < all_lit; ++mask) {
@@ -363,8 +371,7 @@ void FrameRenderer::Impl::run_tile_passes(const FrameState& frame, const RegionP
         if (context)
             context->for_each_transparent(add);
         else
-            embree::for_each_transparent_hit(*frame.rays, passes.pixel_rays, frame.transparent, visibility, tile.rect,
-                                             add);
+            embree::for_each_transparent_hit(*frame.rays, passes.pixel_rays, frame.transparent, tile, add);
         if (!masked.empty()) shade::resolve_alpha_tested(passes.shading, masked, tile);
     }
     if (!passes.subset_shading.empty()) shade_shadows(frame, passes, visibility, tile, shadowed);
@@ -397,6 +404,7 @@ void FrameRenderer::Impl::render_region(const FrameState& frame, const Region& r
         const auto t0 = Clock::now();
         pipeline::RasterOptions options;
         options.transparent = frame.transparent;
+        options.samples = samples;
         const pipeline::TilePass pass = [&](const pipeline::TileContext& c) {
             if (in_rows(c.rect)) run_tile_passes(frame, passes, visibility, c, &c, shadowed);
         };
@@ -411,7 +419,7 @@ void FrameRenderer::Impl::render_region(const FrameState& frame, const Region& r
             TraceScope trace("primary rays");
             const auto t0 = Clock::now();
             embree::cast_primary_rays(*frame.rays, region.camera.view_projection(), w, h, visibility,
-                                      embree::RayPacket::x16, frame.transparent);
+                                      embree::RayPacket::x16, frame.transparent, samples);
             stats.visibility_ms += ms_since(t0);
         }
         TraceScope trace("tiles");
@@ -419,6 +427,20 @@ void FrameRenderer::Impl::render_region(const FrameState& frame, const Region& r
         colour.resize(size_t(w) * size_t(h));
         parallel_for_tiles(TileGrid(w, h, 64), [&](int, const TileRect& rect) {
             const Tile tile = frame_tile(visibility, colour.data(), rect);
+            if (in_rows(rect) && samples > 1) {
+                // The passes once per layer of distinct surfaces, resolved (coverage_layers.h),
+                // as the rasterizer runs them.
+                CoverageLayers& l = layers.local();
+                l.build(rect, samples, pipeline::sample_positions(samples), [&](int x, int y, int s, uint32_t& triangle, float& depth) {
+                    triangle = visibility.sample_triangle[visibility.sample_index(x, y, s)];
+                    depth = visibility.sample_depth[visibility.sample_index(x, y, s)];
+                });
+                for (int j = 0; j < l.layers(); ++j) {
+                    run_tile_passes(frame, passes, visibility, l.layer(j, glm::vec4(0.0f)), nullptr, shadowed);
+                    l.accumulate(j, &tile.colour_at(rect.x0, rect.y0), tile.colour_stride);
+                }
+                return;
+            }
             if (in_rows(rect)) {
                 run_tile_passes(frame, passes, visibility, tile, nullptr, shadowed);
                 return;

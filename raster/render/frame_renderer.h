@@ -52,8 +52,19 @@ struct FrameStats {
 
 class FrameRenderer {
 public:
-    // Throws std::invalid_argument for a bad size or shadows with more than 4 lights.
-    FrameRenderer(AnimatedScene& scene, int width, int height, RendererKind renderer, ShadowMode shadows);
+    // Throws std::invalid_argument for a bad size, shadows with more than 4 lights or a
+    // sample count other than 1, 4, 8 or 16.
+    //
+    // samples > 1 (MSAA): visibility per sample at the standard positions
+    // (pipeline/sample_pattern.h), the rasterizer's coverage or one primary ray per sample;
+    // then each distinct surface of a pixel (a triangle, or nothing: background and the
+    // compute passes) is shaded once, through the same tile passes, and the results are
+    // averaged by the samples they cover, in linear light (core/coverage_layers.h).
+    // Transparent triangles blend over each surface at its pixel centre: their own edges
+    // are not antialiased. Surfaces drawn by compute passes are found per pixel centre too,
+    // so their silhouettes against the background are not either.
+    FrameRenderer(AnimatedScene& scene, int width, int height, RendererKind renderer, ShadowMode shadows,
+                  int samples = 1);
     ~FrameRenderer();
     FrameRenderer(const FrameRenderer&) = delete;
     FrameRenderer& operator=(const FrameRenderer&) = delete;

@@ -190,6 +190,7 @@ void shade_tile(const FrameShading& shading, const Tile& tile) {
     pixels.reserve(size_t(tile.width()) * size_t(tile.height()));
     for (int y = tile.rect.y0; y < tile.rect.y1; ++y)
         for (int x = tile.rect.x0; x < tile.rect.x1; ++x) {
+            if (!tile.active(x, y)) continue;
             const uint32_t id = tile.triangle_at(x, y);
             if (id != kNoTriangle) pixels.push_back({x, y, id});
             else tile.colour_at(x, y) = shading.background(x, y);

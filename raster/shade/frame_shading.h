@@ -77,7 +77,8 @@ private:
     std::vector<glm::vec3> gouraud_;    // per vertex; empty when no material is Gouraud
 };
 
-// The opaque pass of a tile: visible pixels shaded, the others given the background.
+// The opaque pass of a tile: visible pixels shaded, the others given the background (pixels
+// the tile does not hold, Tile::coverage, are left alone).
 void shade_tile(const FrameShading& shading, const Tile& tile);
 
 // Alpha blending (glBlendFunc(GL_SRC_ALPHA, GL_ONE_MINUS_SRC_ALPHA)) for the colour, c = c_src

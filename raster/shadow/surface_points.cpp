@@ -34,10 +34,21 @@ Plane plane_of(const Mesh& mesh, uint32_t triangle) {
 }  // namespace
 
 void gather_surface_points(const VisibilityBuffer& visibility, const Mesh& mesh,
-                           const PixelRays& rays, const TileRect& tile,
+                           const PixelRays& rays, const TileRect& rect,
+                           SurfacePoints& out) {
+    Tile tile;
+    tile.rect = rect;
+    tile.triangle = const_cast<uint32_t*>(visibility.triangle.data()) + size_t(rect.y0) * size_t(visibility.width) +
+                    size_t(rect.x0);
+    tile.stride = size_t(visibility.width);
+    gather_surface_points(tile, size_t(visibility.width), mesh, rays, out);
+}
+
+void gather_surface_points(const Tile& tile, size_t image_width, const Mesh& mesh, const PixelRays& rays,
                            SurfacePoints& out) {
     out.clear();
-    const size_t area = size_t(tile.x1 - tile.x0) * size_t(tile.y1 - tile.y0);
+    const TileRect& rect = tile.rect;
+    const size_t area = size_t(rect.width()) * size_t(rect.height());
     out.pixel.reserve(area);
     out.position.reserve(area);
     out.normal.reserve(area);
@@ -45,18 +56,17 @@ void gather_surface_points(const VisibilityBuffer& visibility, const Mesh& mesh,
     // across rows; when the visibility buffer is cold (written with streaming stores, or
     // long ago) every cache line was a serial miss. Asking for all of them first lets the
     // misses overlap.
-    for (int y = tile.y0; y < tile.y1; ++y)
-        for (int x = tile.x0; x < tile.x1; x += 16)
-            __builtin_prefetch(&visibility.triangle[size_t(y) * size_t(visibility.width) + size_t(x)]);
+    for (int y = rect.y0; y < rect.y1; ++y)
+        for (int x = rect.x0; x < rect.x1; x += 16) __builtin_prefetch(&tile.triangle_at(x, y));
     constexpr int kBlock = 4;
     uint32_t cached = kNoTriangle;  // neighbouring pixels mostly share a triangle
     Plane plane;
-    for (int by = tile.y0; by < tile.y1; by += kBlock)
-        for (int bx = tile.x0; bx < tile.x1; bx += kBlock)
-            for (int y = by; y < std::min(by + kBlock, tile.y1); ++y)
-                for (int x = bx; x < std::min(bx + kBlock, tile.x1); ++x) {
-                    const size_t pixel = size_t(y) * size_t(visibility.width) + size_t(x);
-                    const uint32_t triangle = visibility.triangle[pixel];
+    for (int by = rect.y0; by < rect.y1; by += kBlock)
+        for (int bx = rect.x0; bx < rect.x1; bx += kBlock)
+            for (int y = by; y < std::min(by + kBlock, rect.y1); ++y)
+                for (int x = bx; x < std::min(bx + kBlock, rect.x1); ++x) {
+                    const size_t pixel = size_t(y) * image_width + size_t(x);
+                    const uint32_t triangle = tile.triangle_at(x, y);
                     if (triangle == kNoTriangle) continue;
                     if (triangle != cached) {
                         plane = plane_of(mesh, triangle);
@@ -64,7 +74,12 @@ void gather_surface_points(const VisibilityBuffer& visibility, const Mesh& mesh,
                     }
                     if (plane.length == 0.0f) continue;
                     glm::vec3 origin, direction;
-                    rays.pixel_ray(x, y, origin, direction);
+                    if (tile.centroid) {  // a point on the surface (coverage_layers.h)
+                        const glm::vec2 at = tile.centroid[tile.offset(x, y)];
+                        rays.ray(float(x) + 0.5f + at.x, float(y) + 0.5f + at.y, origin, direction);
+                    } else {
+                        rays.pixel_ray(x, y, origin, direction);
+                    }
                     // Ray-plane intersection: t = n.(a - o) / n.d (edge-on planes give inf/NaN).
                     const float facing = glm::dot(plane.normal, direction);
                     const float t = glm::dot(plane.normal, plane.point - origin) / facing;

@@ -37,6 +37,10 @@ struct SurfacePoints {
 void gather_surface_points(const VisibilityBuffer& visibility, const Mesh& mesh,
                            const PixelRays& rays, const TileRect& tile,
                            SurfacePoints& out);
+// The same for the pixels of a Tile (its triangle ids; pixels it does not hold have none) in
+// an image `image_width` pixels wide, through Tile::centroid where it has one.
+void gather_surface_points(const Tile& tile, size_t image_width, const Mesh& mesh, const PixelRays& rays,
+                           SurfacePoints& out);
 
 // True when a light at `light` is on the camera's side of the surface at `position` (the
 // normal from gather_surface_points faces the camera): only then can it light the point.
