@@ -40,6 +40,7 @@ struct Options {
     int tile = 0;
     std::string renderer = "raster";
     std::string shadows = "none";
+    int samples = 1;
 };
 
 void print_stats(const pipeline::RasterStats& s, double shade_ms) {
@@ -65,7 +66,7 @@ int run_material(const Options& o, int width, int height) {
     const auto threads = limit_threads(o.threads);
     render::AnimatedScene scene = render::still_scene(std::move(view.scene));
     render::FrameRenderer renderer(scene, width, height, render::parse_renderer(o.renderer),
-                                   render::parse_shadow_mode(o.shadows));
+                                   render::parse_shadow_mode(o.shadows), o.samples);
     std::vector<double> frame_ms;
     render::FrameStats stats;
     Frame frame(1, 1);
@@ -93,6 +94,8 @@ int run(const Options& o) {
     parse_size(o.size, "--size", width, height);
     if (o.shade == "material") return run_material(o, width, height);
     if (o.shadows != "none") throw UsageError("--shadows goes with --shade material");
+    // The conformance shaders are defined at pixel centres, as their peer renders them.
+    if (o.samples != 1) throw UsageError("--samples goes with --shade material");
     const pipeline::CullMode cull = parse_cull(o.cull);
     const shade::ShadeMode shade = shade::parse_shade_mode(o.shade);
     if (!o.out_color.empty() && !io::image_format_supported(o.out_color))
@@ -199,6 +202,7 @@ Run define_raster(CLI::App& root) {
     cmd->add_option("--shadows", o.shadows, "none | map | rays (with --shade material)")
         ->check(CLI::IsMember({"none", "map", "rays"}))
         ->default_val("none");
+    add_samples_option(*cmd, o.samples, "(with --shade material; default 1)");
     cmd->add_option("--cull", o.cull, "none | back | front (front faces are counter-clockwise)")->default_val("none");
     add_threads_option(*cmd, o.threads);
     cmd->add_option("--out-color", o.out_color, "colour image (PNG, EXR, TIFF...; 8-bit RGB)");

@@ -1,7 +1,7 @@
 // `tessera render`: animation frames of a scene file.
 //   tessera render --scene NAME|FILE.json [--size WxH] [--frames A:B] [--fps F]
 //                  [--out out/NAME_####.png|.exr|.tif] [--threads N]
-//                  [--renderer raster|raytrace] [--shadows none|map|rays]
+//                  [--renderer raster|raytrace] [--shadows none|map|rays] [--samples 1|4|8|16]
 //                  [--png fast|small] [--resume] [--shard I/N] [--stats] [--trace FILE.json]
 //                  [--quiet]
 // Frames are encoded and written on a background thread (FrameWriter) while the next one
@@ -68,6 +68,7 @@ struct Options {
     std::string size, frames, renderer = "raster", shadows, shard = "0/1", png = "fast";
     std::optional<std::string> out, trace, fps;  // given (perhaps empty) or not
     int threads = 0;
+    int samples = 0;  // 0: the scene's
     bool resume = false, stats = false, quiet = false;
     FarmOptions farm;  // --claim, --checkpoint-every, --distribute (render_farm.h)
 };
@@ -155,6 +156,7 @@ struct RenderPlan {
     FramePattern pattern{""};
     render::RendererKind renderer{};
     render::ShadowMode shadows{};
+    int samples = 1;
     DistributeMode mode{};
 };
 
@@ -201,6 +203,7 @@ RenderPlan plan_render(const Options& o, const LoadedScene& scene) {
     }
     plan.renderer = render::parse_renderer(o.renderer);
     plan.shadows = render::parse_shadow_mode(o.shadows.empty() ? spec.shadows : o.shadows);
+    plan.samples = o.samples ? o.samples : spec.samples;
     if (plan.shadows != render::ShadowMode::none && spec.lights.size() > 4) {  // light masks hold 4 lights
         const std::string why = "at most 4 lights cast shadows, the scene has " + std::to_string(spec.lights.size());
         if (!o.shadows.empty()) throw UsageError("--shadows " + o.shadows + ": " + why);
@@ -321,7 +324,7 @@ FrameLoop::FrameLoop(const Options& o, const LoadedScene& scene, const RenderPla
           }
           return built;
       }()),
-      frame_renderer_(scene_, plan.width, plan.height, plan.renderer, plan.shadows),
+      frame_renderer_(scene_, plan.width, plan.height, plan.renderer, plan.shadows, plan.samples),
       writer_(2, output::FileSettings{output::parse_png_compression(o.png)}),
       farm_(o.farm, o.resume, scene_, scene.spec.textures, scene.name, plan.pattern.fixed_directory()),
       banded_(render::needs_bands(plan.width, plan.height)),
@@ -534,6 +537,7 @@ TESSERA_COMMAND(20, [](CLI::App& root) -> Run {
         ->capture_default_str();
     cmd->add_option("--shadows", o->shadows, "Shadows: none, map or rays (default: the scene's)")
         ->check(CLI::IsMember({"none", "map", "rays"}));
+    add_samples_option(*cmd, o->samples, "(default: the scene's, else 1)");
     cmd->add_option("--png", o->png,
                     "PNG compression: fast (Paeth filter, zlib run-length; for animation work) or small "
                     "(adaptive filters, zlib level 9; slower, smaller files)")

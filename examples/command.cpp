@@ -121,6 +121,14 @@ void add_threads_option(CLI::App& command, int& threads) {
         ->default_val(0);
 }
 
+void add_samples_option(CLI::App& command, int& samples, const std::string& what_default) {
+    command
+        .add_option("--samples", samples,
+                    "MSAA samples per pixel: 1, 4, 8 or 16 at the D3D/Vulkan standard positions; each surface "
+                    "of a pixel is shaded once and weighted by the samples it covers " + what_default)
+        ->check(CLI::IsMember({1, 4, 8, 16}));
+}
+
 std::unique_ptr<tbb::global_control> limit_threads(int threads) {
     if (threads <= 0) return nullptr;
     return std::make_unique<tbb::global_control>(tbb::global_control::max_allowed_parallelism,

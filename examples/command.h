@@ -80,6 +80,10 @@ void print_frame_times(const std::vector<double>& ms);
 // Adds the common "--threads N" option (0, the default, means every core) to `command`.
 void add_threads_option(CLI::App& command, int& threads);
 
+// Adds "--samples 1|4|8|16" (MSAA samples per pixel, pipeline/sample_pattern.h); `what_default`
+// ends its help text.
+void add_samples_option(CLI::App& command, int& samples, const std::string& what_default);
+
 // Caps oneTBB's worker count for as long as the returned guard lives (0: no cap).
 std::unique_ptr<tbb::global_control> limit_threads(int threads);
 

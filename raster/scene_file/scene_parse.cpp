@@ -612,6 +612,9 @@ SceneSpec parse_scene(const std::string& json_text, const std::string& label,
         s.shadows = r->string("shadows", s.shadows);
         if (s.shadows != "none" && s.shadows != "map" && s.shadows != "rays")
             r->at("shadows").fail("expected none, map or rays");
+        s.samples = r->integer("samples", s.samples);
+        if (s.samples != 1 && s.samples != 4 && s.samples != 8 && s.samples != 16)
+            r->at("samples").fail("expected 1, 4, 8 or 16 samples per pixel");
         r->finish();
     }
     check_unique(s.textures, root, "textures");

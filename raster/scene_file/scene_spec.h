@@ -114,6 +114,7 @@ struct SceneSpec {
     AnimationSpec animation;
     glm::ivec2 size{1280, 720};   // the default --size
     std::string shadows = "none";  // the default --shadows
+    int samples = 1;               // the default --samples (pipeline/sample_pattern.h)
 };
 
 }  // namespace tessera::scene_file
