@@ -12,6 +12,7 @@
 #include <vector>
 
 #include "examples/command.h"
+#include "examples/shadow_map_flags.h"
 #include "examples/model_view.h"
 #include "raster/core/atomic_file.h"
 #include "raster/embree/ray_cast.h"
@@ -41,6 +42,7 @@ struct Options {
     std::string renderer = "raster";
     std::string shadows = "none";
     int samples = 1;
+    ShadowMapFlags map_flags;
 };
 
 void print_stats(const pipeline::RasterStats& s, double shade_ms) {
@@ -65,6 +67,7 @@ int run_material(const Options& o, int width, int height) {
     ModelView view = load_model_view(o.mesh, o.camera, width, height);
     const auto threads = limit_threads(o.threads);
     render::AnimatedScene scene = render::still_scene(std::move(view.scene));
+    o.map_flags.apply(scene.scene.lights);
     render::FrameRenderer renderer(scene, width, height, render::parse_renderer(o.renderer),
                                    render::parse_shadow_mode(o.shadows), o.samples);
     std::vector<double> frame_ms;
@@ -203,6 +206,7 @@ Run define_raster(CLI::App& root) {
         ->check(CLI::IsMember({"none", "map", "rays"}))
         ->default_val("none");
     add_samples_option(*cmd, o.samples, "(with --shade material; default 1)");
+    add_shadow_map_options(*cmd, o.map_flags);
     cmd->add_option("--cull", o.cull, "none | back | front (front faces are counter-clockwise)")->default_val("none");
     add_threads_option(*cmd, o.threads);
     cmd->add_option("--out-color", o.out_color, "colour image (PNG, EXR, TIFF...; 8-bit RGB)");

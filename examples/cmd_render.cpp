@@ -36,6 +36,7 @@
 #include "examples/progress.h"
 #include "examples/render_farm.h"
 #include "examples/resident_memory.h"
+#include "examples/shadow_map_flags.h"
 #include "examples/signals.h"
 #include "raster/asset/framing.h"
 #include "raster/core/atomic_file.h"
@@ -71,6 +72,7 @@ struct Options {
     int samples = 0;  // 0: the scene's
     bool resume = false, stats = false, quiet = false;
     FarmOptions farm;  // --claim, --checkpoint-every, --distribute (render_farm.h)
+    ShadowMapFlags map_flags;  // over every light's "shadow_map"
 };
 
 // The folders of `frames` (one for all, or one per frame when the pattern's placeholder is
@@ -317,6 +319,7 @@ FrameLoop::FrameLoop(const Options& o, const LoadedScene& scene, const RenderPla
           TraceScope t("build scene");
           std::vector<std::string> warnings;
           render::AnimatedScene built = scene_file::build_scene(scene.spec, &warnings);
+          o.map_flags.apply(built.scene.lights);
           if (dist_.rank() == 0) {
               for (const std::string& w : warnings) std::fprintf(stderr, "tessera: warning: %s\n", w.c_str());
               if (!scene.spec.camera_given)
@@ -538,6 +541,7 @@ TESSERA_COMMAND(20, [](CLI::App& root) -> Run {
     cmd->add_option("--shadows", o->shadows, "Shadows: none, map or rays (default: the scene's)")
         ->check(CLI::IsMember({"none", "map", "rays"}));
     add_samples_option(*cmd, o->samples, "(default: the scene's, else 1)");
+    add_shadow_map_options(*cmd, o->map_flags);
     cmd->add_option("--png", o->png,
                     "PNG compression: fast (Paeth filter, zlib run-length; for animation work) or small "
                     "(adaptive filters, zlib level 9; slower, smaller files)")

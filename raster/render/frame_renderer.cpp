@@ -72,7 +72,6 @@ struct FrameState {
     scene::BakedScene baked;
     std::optional<embree::RayScene> rays;
     std::vector<glm::vec3> light_targets;
-    std::vector<shadow::ShadowMap> maps;
     shadow::LightTest light_test;
     std::vector<march::MetaballField> metaballs;
     // Per triangle, kOpaque, kBlended or kAlphaTested (both left out of the opaque pass);
@@ -113,6 +112,10 @@ struct FrameRenderer::Impl {
     int rows_first = 0, rows_last = 1 << 30;  // set_rows
     // Reused from frame to frame (and region to region): its pages are touched once.
     VisibilityBuffer visibility;
+    // --shadows map: each light's cascades, rendered again every frame into the same memory,
+    // by a rasterizer of their own (whose buffers stay sized for the maps, not the frame).
+    std::vector<shadow::ShadowMap> maps;
+    pipeline::Rasterizer map_rasterizer;
 
     // Multisampled ray casting: each thread's layers of the tile in hand.
     tbb::enumerable_thread_specific<CoverageLayers> layers;
@@ -149,6 +152,8 @@ FrameRenderer::FrameRenderer(AnimatedScene& scene, int width, int height, Render
     if (shadows != ShadowMode::none && scene.scene.lights.size() > 4)
         throw std::invalid_argument("--shadows: at most 4 lights cast shadows, the scene has " +
                                     std::to_string(scene.scene.lights.size()));
+    if (shadows == ShadowMode::map)
+        for (const scene::Light& light : scene.scene.lights) check_shadow_map_settings(light.shadow_map);
     impl_ = std::make_unique<Impl>(scene, width, height, renderer, shadows, samples);
     if (renderer == RendererKind::raytrace || shadows == ShadowMode::rays) impl_->device.emplace();
 }
@@ -250,11 +255,18 @@ void FrameRenderer::Impl::prepare(float time, FrameState& frame, FrameStats& sta
         if (shadows == ShadowMode::rays) {
             frame.light_test = embree::shadow_ray_test(*frame.rays);
         } else {
+            // Fitted to the whole frame's camera (regions and bands share the maps).
             TraceScope map_trace("shadow maps");
-            frame.maps.reserve(s.lights.size());
-            for (const glm::vec3& light : frame.light_targets)
-                frame.maps.emplace_back(rasterizer, frame.baked.mesh, light);
-            frame.light_test = shadow::shadow_map_test(frame.maps);
+            const bool reuse = maps.size() == s.lights.size();
+            if (!reuse) maps.clear();
+            for (size_t l = 0; l < s.lights.size(); ++l) {
+                const shadow::ShadowLight light(frame.light_targets[l], s.lights[l].position.w == 0.0f);
+                if (reuse)
+                    maps[l].render(map_rasterizer, frame.baked.mesh, light, &s.camera);
+                else
+                    maps.emplace_back(map_rasterizer, frame.baked.mesh, light, s.camera, s.lights[l].shadow_map);
+            }
+            frame.light_test = shadow::shadow_map_test(maps);
         }
     }
     for (const PassSpec& p : scene.passes)

@@ -7,8 +7,10 @@
 //
 // Shadows: each tile's visible points (shadow/surface_points.h) are tested against every light
 // with Embree occlusion rays (--shadows rays, embree/shadow_rays.h) or shadow maps rendered by
-// the rasterizer from each light (--shadows map, shadow/shadow_map.h); a directional light is
-// treated as a point light 10^4 units away along its direction. A point that faces a
+// the rasterizer from each light (--shadows map, shadow/shadow_map.h: cascades fitted to the
+// frame's camera, as each light's shadow_map settings ask; orthographic for a directional
+// light); rays and map lookups treat a directional light as a point 10^4 units away along
+// its direction. A point that faces a
 // light but cannot see it is re-shaded with that light's emission Le set to zero, which is
 // exactly the Blinn-Phong formula with the light's direct term removed (ambient ka La stays), so
 // shadowed and lit pixels come from the same shading kernel. Points facing away from a light

@@ -4,6 +4,7 @@
 
 #include <cmath>
 #include <cstdint>
+#include <stdexcept>
 
 #include "procedural/rd_presets.h"
 #include "raster/core/direction.h"
@@ -177,6 +178,26 @@ scene::Background parse_background(const JsonNode& n) {
     return b;
 }
 
+// A light's "shadow_map": {"size", "cascades", "split_blend", "pcf", "normal_offset",
+// "depth_bias"}, each optional (core/shadow_map_settings.h).
+ShadowMapSettings parse_shadow_map(const JsonNode& n) {
+    n.expect_object();
+    ShadowMapSettings s;
+    s.resolution = n.integer("size", s.resolution);
+    s.cascades = n.integer("cascades", s.cascades);
+    s.split_blend = n.number("split_blend", s.split_blend);
+    s.pcf_radius = n.integer("pcf", s.pcf_radius);
+    s.normal_offset = n.number("normal_offset", s.normal_offset);
+    s.depth_bias = n.number("depth_bias", s.depth_bias);
+    n.finish();
+    try {
+        check_shadow_map_settings(s);
+    } catch (const std::invalid_argument& e) {
+        n.fail(e.what());
+    }
+    return s;
+}
+
 scene::Light parse_light(const JsonNode& n) {
     n.expect_object();
     scene::Light light;
@@ -186,6 +207,7 @@ scene::Light parse_light(const JsonNode& n) {
     else light.position = glm::vec4(direction(n, "direction", glm::vec3(0.0f)), 0.0f);
     light.La = colour(n, "La", light.La, kMaxRadiance);
     light.Le = colour(n, "Le", light.Le, kMaxRadiance);
+    if (const auto map = n.find("shadow_map")) light.shadow_map = parse_shadow_map(*map);
     n.finish();
     return light;
 }

@@ -1,8 +1,5 @@
 #include "raster/shadow/shadow_map.h"
 
-#include <tbb/blocked_range.h>
-#include <tbb/parallel_reduce.h>
-
 #include <algorithm>
 #include <bit>
 #include <cmath>
@@ -18,31 +15,6 @@
 
 namespace tessera::shadow {
 namespace {
-
-struct Bounds {
-    glm::vec3 lo{std::numeric_limits<float>::infinity()};
-    glm::vec3 hi{-std::numeric_limits<float>::infinity()};
-};
-
-// Bounds of the finite vertices (min/max: the same whatever the split).
-Bounds mesh_bounds(const Mesh& mesh) {
-    return tbb::parallel_reduce(
-        tbb::blocked_range<size_t>(0, mesh.vertex_count(), 1 << 15), Bounds{},
-        [&](const tbb::blocked_range<size_t>& range, Bounds b) {
-            for (size_t v = range.begin(); v != range.end(); ++v) {
-                const glm::vec3& p = mesh.positions[v];
-                if (!std::isfinite(p.x) || !std::isfinite(p.y) || !std::isfinite(p.z)) continue;
-                b.lo = glm::min(b.lo, p);
-                b.hi = glm::max(b.hi, p);
-            }
-            return b;
-        },
-        [](Bounds a, const Bounds& b) {
-            a.lo = glm::min(a.lo, b.lo);
-            a.hi = glm::max(a.hi, b.hi);
-            return a;
-        });
-}
 
 // Overloads that let receiver_in_map run on one float or on simd lanes with identical
 // results (simd::max is `a > b ? a : b` per lane, NaN included).
@@ -63,13 +35,14 @@ struct MapPoint {
 // operation in a fixed order (no contraction: the build uses -ffp-contract=off), so the
 // scalar lookup and the SIMD one agree to the bit.
 template <class F>
-MapPoint<F> receiver_in_map(const glm::vec3& light, const glm::vec3& axis, const glm::mat4& vp,
-                            float texel_per_depth, float normal_offset, float depth_bias,
-                            float size, F px, F py, F pz, F nx, F ny, F nz) {
+MapPoint<F> receiver_in_map(const glm::vec3& light, const LightProjection& projection,
+                            float normal_offset, float depth_bias, float size, F px, F py, F pz,
+                            F nx, F ny, F nz) {
+    const glm::vec3& axis = projection.axis;
     const F lx = F(light.x) - px, ly = F(light.y) - py, lz = F(light.z) - pz;  // to the light
     const F inverse_distance = F(1.0f) / sqrt_of(lx * lx + ly * ly + lz * lz);
     const F along_axis = (F(0.0f) - lx) * F(axis.x) + (F(0.0f) - ly) * F(axis.y) + (F(0.0f) - lz) * F(axis.z);
-    const F texel = F(texel_per_depth) * max_of(along_axis, F(0.0f));
+    const F texel = F(projection.texel_size) + F(projection.texel_per_depth) * max_of(along_axis, F(0.0f));
     // Slope-scaled normal offset: sin of the angle between normal and light.
     const F cosine = (nx * lx + ny * ly + nz * lz) * inverse_distance;
     const F sine = sqrt_of(max_of(F(0.0f), F(1.0f) - cosine * cosine));
@@ -79,84 +52,128 @@ MapPoint<F> receiver_in_map(const glm::vec3& light, const glm::vec3& axis, const
     const F ry = py + ny * offset + ly * toward;
     const F rz = pz + nz * offset + lz * toward;
     F cx, cy, cz, cw;
-    pipeline::clip_position(vp, rx, ry, rz, cx, cy, cz, cw);
+    pipeline::clip_position(projection.view_projection, rx, ry, rz, cx, cy, cz, cw);
     const F inverse_w = F(1.0f) / cw;
     return {(cx * inverse_w * F(0.5f) + F(0.5f)) * F(size), (F(0.5f) - cy * inverse_w * F(0.5f)) * F(size),
             cz * inverse_w * F(0.5f) + F(0.5f), cw};
 }
 
-}  // namespace
-
-ShadowMap::ShadowMap(pipeline::Rasterizer& rasterizer, const Mesh& mesh, const glm::vec3& light,
-                     const ShadowMapOptions& options)
-    : light_(light), options_(options) {
-    if (options.resolution < 16 || options.resolution > pipeline::kMaxViewport)
-        throw std::invalid_argument("shadow map resolution " + std::to_string(options.resolution) +
-                                    " is outside 16 .. " + std::to_string(pipeline::kMaxViewport));
-    if (options.pcf_radius < 0 || options.pcf_radius > 8)
-        throw std::invalid_argument("PCF radius " + std::to_string(options.pcf_radius) +
-                                    " is outside 0 .. 8");
-    if (!(options.normal_offset >= 0.0f) || !(options.depth_bias >= 0.0f))
-        throw std::invalid_argument("shadow bias must be zero or positive");
-    render(rasterizer, mesh, light);
+// Whether a receiver projected into a cascade is held by it: in front of the light, within
+// the depth range, and with every PCF tap inside the map (the last cascade takes receivers
+// whose taps reach past its edge: those taps count as lit). Written once for float and
+// simd::vfloat, as receiver_in_map.
+template <class F>
+auto held_by(const MapPoint<F>& m, float low, float high) {
+    return (F(0.0f) < m.w) & (F(low) <= m.x) & (m.x < F(high)) & (F(low) <= m.y) & (m.y < F(high)) &
+           (m.z <= F(1.0f));
 }
 
-void ShadowMap::render(pipeline::Rasterizer& rasterizer, const Mesh& mesh, const glm::vec3& light) {
+// `out` becomes the positions of `mesh` and those of its triangles that an orthographic
+// view_projection does not put entirely beyond one edge of [-limit, limit]^2 (Cohen-Sutherland
+// outcodes of the vertices). Non-finite vertices get no outcode: their triangles are kept
+// for the rasterizer to reject. The depth the kept triangles leave is the depth all of them
+// would leave: the others cover no texel centre.
+void cull_to_window(const Mesh& mesh, const glm::mat4& view_projection, float limit, Mesh& out) {
+    out.positions.assign(mesh.positions.begin(), mesh.positions.end());
+    out.indices.clear();
+    std::vector<uint8_t> code(mesh.positions.size());
+    const glm::vec4 row_x(view_projection[0][0], view_projection[1][0], view_projection[2][0], view_projection[3][0]);
+    const glm::vec4 row_y(view_projection[0][1], view_projection[1][1], view_projection[2][1], view_projection[3][1]);
+    for (size_t v = 0; v < code.size(); ++v) {
+        const glm::vec4 p(mesh.positions[v], 1.0f);
+        const float x = glm::dot(row_x, p), y = glm::dot(row_y, p);
+        code[v] = uint8_t((x < -limit) | (x > limit) << 1 | (y < -limit) << 2 | (y > limit) << 3);
+    }
+    const size_t n = mesh.vertex_count();
+    for (size_t i = 0; i + 2 < mesh.indices.size(); i += 3) {
+        const uint32_t a = mesh.indices[i], b = mesh.indices[i + 1], c = mesh.indices[i + 2];
+        if (a < n && b < n && c < n && (code[a] & code[b] & code[c])) continue;
+        out.indices.insert(out.indices.end(), {a, b, c});
+    }
+}
+
+}  // namespace
+
+ShadowMap::ShadowMap(pipeline::Rasterizer& rasterizer, const Mesh& mesh, const ShadowLight& light,
+                     const ShadowMapOptions& options)
+    : light_(light), options_(options) {
+    check_shadow_map_settings(options);
+    static_assert(pipeline::kMaxViewport == 8192, "check_shadow_map_settings's size limit");
+    render(rasterizer, mesh, light, nullptr);
+}
+
+ShadowMap::ShadowMap(pipeline::Rasterizer& rasterizer, const Mesh& mesh, const ShadowLight& light,
+                     const Camera& camera, const ShadowMapOptions& options)
+    : light_(light), options_(options) {
+    check_shadow_map_settings(options);
+    render(rasterizer, mesh, light, &camera);
+}
+
+void ShadowMap::render(pipeline::Rasterizer& rasterizer, const Mesh& mesh, const ShadowLight& light,
+                       const Camera* camera) {
     light_ = light;
     const Bounds bounds = mesh_bounds(mesh);
-    const bool empty = !(bounds.lo.x <= bounds.hi.x);
-    const glm::vec3 centre = empty ? light + glm::vec3(0, 0, -1) : 0.5f * (bounds.lo + bounds.hi);
-    const float radius = empty ? 1.0f : std::max(0.5f * glm::length(bounds.hi - bounds.lo), 1e-6f);
-    float distance = glm::length(centre - light);
-    Camera camera;
-    camera.eye = light;
-    // Looking at the centre; from inside the sphere (or on it) any direction will do.
-    camera.lookat = distance > 1e-6f * radius ? centre : light + glm::vec3(0, -1, 0);
-    distance = std::max(distance, 1e-6f * radius);
-    axis_ = glm::normalize(camera.lookat - light);
-    camera.up = std::abs(axis_.y) > 0.99f ? glm::vec3(1, 0, 0) : glm::vec3(0, 1, 0);
-    camera.aspect = 1.0f;
-    const bool outside = distance > 1.01f * radius;
-    camera.fovy_deg = outside ? glm::degrees(2.0f * std::asin(radius / distance)) * 1.02f : 120.0f;
-    // Near at the sphere's closest point, but not so close that depth precision collapses.
-    camera.far = distance + radius;
-    camera.near = std::max(distance - radius, camera.far * 1e-3f);
-    view_projection_ = camera.view_projection();
-    texel_per_depth_ =
-        2.0f * std::tan(glm::radians(camera.fovy_deg) * 0.5f) / float(options_.resolution);
+    const int size = options_.resolution;
+    std::vector<Sphere> spheres;
+    splits_.clear();
+    if (camera) {
+        const auto [near, far] = shadowed_depths(*camera, bounds);
+        splits_ = cascade_splits(near, far, options_.cascades, options_.split_blend);
+        for (int c = 0; c < options_.cascades; ++c)
+            spheres.push_back(slice_sphere(*camera, splits_[size_t(c)], splits_[size_t(c) + 1]));
+    } else {
+        spheres.push_back(bounds_sphere(bounds));
+    }
+    cascades_.resize(spheres.size());
     pipeline::RasterOptions raster;
     raster.cull = pipeline::CullMode::none;  // both faces of a surface cast shadows
     raster.depth_only = true;
-    rasterizer.render(mesh, view_projection_, pipeline::Viewport(options_.resolution, options_.resolution),
-                      raster, depth_);
+    for (size_t c = 0; c < spheres.size(); ++c) {
+        Cascade& cascade = cascades_[c];
+        cascade.projection = light.distant ? fit_distant_light(light.position, spheres[c], bounds, size)
+                                           : fit_point_light(light.position, spheres[c], bounds, size);
+        const Mesh* drawn = &mesh;
+        if (light.distant) {
+            cull_to_window(mesh, cascade.projection.view_projection, 1.0f + 2.0f / float(size), culled_);
+            drawn = &culled_;
+        }
+        rasterizer.render(*drawn, cascade.projection.view_projection, pipeline::Viewport(size, size), raster,
+                          cascade.depth);
+    }
 }
 
 template <bool kMajority>
-int ShadowMap::count_lit(const glm::vec3& position, const glm::vec3& normal) const {
+int ShadowMap::count_lit(const glm::vec3& position, const glm::vec3& normal, int* cascade) const {
     const int r = options_.pcf_radius, taps = (2 * r + 1) * (2 * r + 1);
     const int size = options_.resolution;
-    const MapPoint<float> m = receiver_in_map(light_, axis_, view_projection_, texel_per_depth_,
-                                              options_.normal_offset, options_.depth_bias, float(size),
-                                              position.x, position.y, position.z, normal.x, normal.y,
-                                              normal.z);
-    if (!(m.w > 0.0f)) return taps;  // behind the light's view: outside the map
-    const float x = m.x, y = m.y, z = m.z;
-    if (!(x >= 0.0f && x < float(size) && y >= 0.0f && y < float(size))) return taps;
-    const int cx = int(x), cy = int(y);
-    // Taps beyond the map's edge see nothing stored: lit. Count the dark ones inside.
-    const int x0 = std::max(cx - r, 0), x1 = std::min(cx + r, size - 1);
-    const int y0 = std::max(cy - r, 0), y1 = std::min(cy + r, size - 1);
-    const int most_dark = taps / 2;  // lit() needs at least taps - taps/2 lit
-    int dark = 0, seen = 0;
-    for (int ty = y0; ty <= y1; ++ty) {
-        const float* row = depth_.depth.data() + size_t(ty) * size_t(size);
-        for (int tx = x0; tx <= x1; ++tx) {
-            dark += z > row[tx];
-            ++seen;
+    const int last = cascade_count() - 1;
+    for (int c = 0; c <= last; ++c) {
+        const MapPoint<float> m = receiver_in_map(light_.position, cascades_[size_t(c)].projection,
+                                                  options_.normal_offset, options_.depth_bias, float(size),
+                                                  position.x, position.y, position.z, normal.x, normal.y,
+                                                  normal.z);
+        const float low = c == last ? 0.0f : float(r), high = float(size) - low;
+        if (!held_by(m, low, high)) continue;
+        if (cascade) *cascade = c;
+        const int cx = int(m.x), cy = int(m.y);
+        // Taps beyond the map's edge see nothing stored: lit. Count the dark ones inside.
+        const int x0 = std::max(cx - r, 0), x1 = std::min(cx + r, size - 1);
+        const int y0 = std::max(cy - r, 0), y1 = std::min(cy + r, size - 1);
+        const int most_dark = taps / 2;  // lit() needs at least taps - taps/2 lit
+        const float* depth = cascades_[size_t(c)].depth.depth.data();
+        int dark = 0, seen = 0;
+        for (int ty = y0; ty <= y1; ++ty) {
+            const float* row = depth + size_t(ty) * size_t(size);
+            for (int tx = x0; tx <= x1; ++tx) {
+                dark += m.z > row[tx];
+                ++seen;
+            }
+            if (kMajority && (dark > most_dark || seen - dark >= taps - most_dark)) break;
         }
-        if (kMajority && (dark > most_dark || seen - dark >= taps - most_dark)) break;
+        return taps - dark - (kMajority ? (y1 - y0 + 1) * (x1 - x0 + 1) - seen : 0);
     }
-    return taps - dark - (kMajority ? (y1 - y0 + 1) * (x1 - x0 + 1) - seen : 0);
+    if (cascade) *cascade = cascade_count();
+    return taps;  // outside every cascade
 }
 
 float ShadowMap::lit_fraction(const glm::vec3& position, const glm::vec3& normal) const {
@@ -169,10 +186,16 @@ bool ShadowMap::lit(const glm::vec3& position, const glm::vec3& normal) const {
     return count_lit<true>(position, normal) >= taps - taps / 2;
 }
 
+int ShadowMap::cascade_of(const glm::vec3& position, const glm::vec3& normal) const {
+    int cascade = 0;
+    count_lit<true>(position, normal, &cascade);
+    return cascade;
+}
+
 void ShadowMap::mark_lit_reference(const SurfacePoints& points, uint8_t bit,
                                    std::span<uint8_t> visible) const {
     for (size_t i = 0; i < points.size(); ++i)
-        if (faces_light(points.position[i], points.normal[i], light_) &&
+        if (faces_light(points.position[i], points.normal[i], light_.position) &&
             lit(points.position[i], points.normal[i]))
             visible[i] |= bit;
 }
@@ -185,48 +208,56 @@ void ShadowMap::mark_lit(const SurfacePoints& points, uint8_t bit, std::span<uin
     if (n == 0) return;
     const int r = options_.pcf_radius, taps = (2 * r + 1) * (2 * r + 1);
     const int size = options_.resolution;
-    const float* depth = depth_.depth.data();
+    const int last = cascade_count() - 1;
+    const glm::vec3& light = light_.position;
     const float* position = &points.position[0].x;
     const float* normal = &points.normal[0].x;
     static_assert(sizeof(glm::vec3) == 3 * sizeof(float));
-    const vint zero(0), limit(size), last(int32_t(n - 1));
-    const vfloat fsize = vfloat(float(size));
+    const vint zero(0), limit(size), last_point(int32_t(n - 1));
     for (size_t first = 0; first < n; first += simd::kLanes) {
         // Lanes past the end repeat the last point; their answers are not stored.
         vint index = vint(int32_t(first)) + simd::lane_index();
-        index = simd::select(index < last, index, last);
+        index = simd::select(index < last_point, index, last_point);
         const vint offset = index * vint(3);
         const vfloat px = simd::gather(position, offset), py = simd::gather(position + 1, offset),
                      pz = simd::gather(position + 2, offset);
         const vfloat nx = simd::gather(normal, offset), ny = simd::gather(normal + 1, offset),
                      nz = simd::gather(normal + 2, offset);
         // faces_light(): dot(normal, light - position) > 0, in glm's order ((x + y) + z).
-        const vfloat facing = nx * (vfloat(light_.x) - px) + ny * (vfloat(light_.y) - py) +
-                              nz * (vfloat(light_.z) - pz);
+        const vfloat facing = nx * (vfloat(light.x) - px) + ny * (vfloat(light.y) - py) +
+                              nz * (vfloat(light.z) - pz);
         const vmask faces = vfloat(0.0f) < facing;
         if (!simd::any(faces)) continue;
-        const MapPoint<vfloat> m = receiver_in_map(light_, axis_, view_projection_, texel_per_depth_,
-                                                   options_.normal_offset, options_.depth_bias,
-                                                   float(size), px, py, pz, nx, ny, nz);
-        const vmask inside = (vfloat(0.0f) < m.w) & (vfloat(0.0f) <= m.x) & (m.x < fsize) &
-                             (vfloat(0.0f) <= m.y) & (m.y < fsize);
-        // int(x) of count_lit: x >= 0 inside, so floor is truncation; other lanes read texel 0.
-        const vint cx = simd::select(inside, simd::round_to_int(simd::floor(m.x)), zero);
-        const vint cy = simd::select(inside, simd::round_to_int(simd::floor(m.y)), zero);
-        vint dark(0);
-        for (int dy = -r; dy <= r; ++dy) {
-            const vint ty = cy + vint(dy);
-            const vmask row_in = (ty >= zero) & (ty < limit);  // taps beyond the edge are lit
-            for (int dx = -r; dx <= r; ++dx) {
-                const vint tx = cx + vint(dx);
-                const vmask in = row_in & (tx >= zero) & (tx < limit);
-                const vint texel = simd::select(in, ty * limit + tx, zero);
-                const vmask shadowed = in & (simd::gather(depth, texel) < m.z);
-                dark = dark + simd::select(shadowed, vint(1), zero);
+        vmask pending = faces, lit(false);
+        for (int c = 0; c <= last && simd::any(pending); ++c) {
+            const MapPoint<vfloat> m = receiver_in_map(light, cascades_[size_t(c)].projection,
+                                                       options_.normal_offset, options_.depth_bias,
+                                                       float(size), px, py, pz, nx, ny, nz);
+            const float low = c == last ? 0.0f : float(r), high = float(size) - low;
+            const vmask here = pending & held_by(m, low, high);
+            if (!simd::any(here)) continue;
+            const float* depth = cascades_[size_t(c)].depth.depth.data();
+            // int(x) of count_lit: x >= 0 where held, so floor is truncation; other lanes
+            // read texel 0.
+            const vint cx = simd::select(here, simd::round_to_int(simd::floor(m.x)), zero);
+            const vint cy = simd::select(here, simd::round_to_int(simd::floor(m.y)), zero);
+            vint dark(0);
+            for (int dy = -r; dy <= r; ++dy) {
+                const vint ty = cy + vint(dy);
+                const vmask row_in = (ty >= zero) & (ty < limit);  // taps beyond the edge are lit
+                for (int dx = -r; dx <= r; ++dx) {
+                    const vint tx = cx + vint(dx);
+                    const vmask in = row_in & (tx >= zero) & (tx < limit);
+                    const vint texel = simd::select(in, ty * limit + tx, zero);
+                    const vmask shadowed = in & (simd::gather(depth, texel) < m.z);
+                    dark = dark + simd::select(shadowed, vint(1), zero);
+                }
             }
+            // lit(): at least taps - taps/2 of the taps lit, i.e. at most taps/2 dark.
+            lit = lit | (here & (dark < vint(taps / 2 + 1)));
+            pending = simd::andnot(here, pending);
         }
-        // lit(): at least taps - taps/2 of the taps lit, i.e. at most taps/2 dark.
-        const vmask lit = simd::andnot(inside, vmask(true)) | (dark < vint(taps / 2 + 1));
+        lit = lit | pending;  // outside every cascade
         const size_t count = std::min<size_t>(simd::kLanes, n - first);
         for (uint32_t bits = simd::bits(faces & lit); bits; bits &= bits - 1) {
             const size_t lane = size_t(std::countr_zero(bits));

@@ -1,65 +1,94 @@
-// Shadow maps rendered by tessera's own rasterizer (Williams 1978: draw the
-// scene from the light, keep the depth), then looked up per surface point with a bias and
+// Shadow maps rendered by tessera's own rasterizer (Williams 1978: draw the scene from the
+// light, keep the depth), then looked up per surface point with a bias and
 // percentage-closer filtering.
 //
-// The light is a point light; its map is one perspective view from the light towards the
-// centre of the mesh's bounding sphere, with the field of view and near/far planes fitted to
-// that sphere, so every triangle of the frame lies inside the map (a light inside the sphere
-// gets a 120-degree view: points outside it count as lit; a cube map would be the cure).
+// Where the maps look (shadow/cascades.h): given the camera, a light gets
+// ShadowMapSettings::cascades maps split along the camera's view, each fitted to its slice
+// of the view frustum (orthographic and texel-snapped for a distant light, perspective for a
+// point light); without a camera, one map covers the mesh's bounding sphere. A receiver
+// reads the first cascade that holds it with all its PCF taps (cascades are ordered from
+// the camera outwards, so that is the finest one that can answer); a receiver outside every
+// cascade counts as lit.
 //
-// Bias, in texels of the map at the receiver's distance (so it follows the resolution and
-// the distance to the light): the receiver is pushed `normal_offset * sin(theta)` texels
-// along its normal (theta: angle between normal and light) and `depth_bias` texels towards
-// the light before it is projected. Why sin(theta): a tap D texels away from the receiver
-// reads a plane whose depth differs by D * texel * tan(theta) along the light, and a point
-// h above the plane is h / cos(theta) in front of it, so h >= D * texel * sin(theta) keeps
-// every tap in front. The farthest 3x3 PCF tap is D = sqrt(2) + 0.71 = 2.12 texels away
-// (the receiver can sit anywhere in its texel), hence the default 2.5: no acne on flat
-// surfaces at any angle, and almost no offset (no light leaking) where the light is steep.
-// `depth_bias` covers the depth buffer's rounding.
+// Bias, in texels of the cascade read at the receiver (so it follows each cascade's
+// resolution and, for a point light, the distance to the light): the receiver is pushed
+// `normal_offset * sin(theta)` texels along its normal (theta: angle between normal and
+// light) and `depth_bias` texels towards the light before it is projected (normal-offset
+// bias). Why sin(theta): a tap D texels away from the receiver reads a plane whose depth
+// differs by D * texel * tan(theta) along the light, and a point h above the plane is
+// h / cos(theta) in front of it, so h >= D * texel * sin(theta) keeps every tap in front.
+// lit() is the majority of the 3x3 PCF taps, so only the 5 nearest must be in front: the
+// 5th nearest tap centre is at most sqrt(1.5^2 + 0.5^2) = 1.58 texels away (receiver at a
+// texel corner), hence the default 1.6: no acne on flat surfaces at any angle, and almost
+// no offset where the light is steep. (Every tap in front would take 2.12 texels, which
+// visibly shrinks shadows at their edges.) Because the offset is in texels and the near
+// cascades' texels are small (millimetres on a room-sized view), the offset stays far below
+// the size of an object resting on a surface: contact shadows survive. `depth_bias` covers
+// the depth buffer's rounding.
 //
-// PCF: (2r+1)^2 nearest-texel depth comparisons around the receiver; lit_fraction() is the
-// fraction passing, and lit() their majority (the binary state the light mask keeps).
-// mark_lit() answers lit() for a whole tile of surface points, simd::kLanes at a time, with
-// the same float operations in the same order (receiver_in_map in shadow_map.cpp), so it
-// equals mark_lit_reference(), the one-point-at-a-time definition, bit for bit.
+// PCF: a (2r+1)^2 box of nearest-texel depth comparisons around the receiver's texel;
+// lit_fraction() is the fraction passing, and lit() their majority (the binary state the
+// light mask keeps). mark_lit() answers lit() for a whole tile of surface points,
+// simd::kLanes at a time, with the same float operations in the same order
+// (receiver_in_map in shadow_map.cpp), so it equals mark_lit_reference(), the
+// one-point-at-a-time definition, bit for bit.
 //
-// The map is rendered depth only (RasterOptions::depth_only): no triangle ids are written.
+// The maps are rendered depth only (RasterOptions::depth_only): no triangle ids are written.
+// An orthographic cascade is handed only the triangles that can reach its window (not all
+// three vertices beyond one of its edges): the near cascades see a small part of the
+// scene, and the rasterizer's per-triangle work is most of a map's cost.
 #pragma once
 #include <glm/glm.hpp>
 
 #include <span>
 #include <vector>
 
+#include "raster/core/camera.h"
 #include "raster/core/mesh.h"
-#include "raster/pipeline/rasterizer.h"
-#include "raster/shadow/light_mask.h"
+#include "raster/core/shadow_map_settings.h"
 #include "raster/core/visibility.h"
+#include "raster/pipeline/rasterizer.h"
+#include "raster/shadow/cascades.h"
+#include "raster/shadow/light_mask.h"
 
 namespace tessera::shadow {
 
-struct ShadowMapOptions {
-    int resolution = 2048;       // square map, 16 .. kMaxViewport texels
-    float normal_offset = 2.5f;  // texels times sin(theta), along the surface normal
-    float depth_bias = 0.5f;     // texels, towards the light
-    int pcf_radius = 1;          // (2r+1)^2 taps; 0: a single tap
+using ShadowMapOptions = ShadowMapSettings;
+
+// Where shadows are cast from: a point light's position, or for a distant (directional)
+// light a point far along its direction (the point shadow rays aim at) with `distant` set,
+// which makes the maps orthographic along that direction.
+struct ShadowLight {
+    glm::vec3 position{0.0f};
+    bool distant = false;
+    ShadowLight(const glm::vec3& p, bool d = false) : position(p), distant(d) {}  // NOLINT: a point light converts
 };
 
 class ShadowMap {
 public:
-    // Renders the depth of `mesh` as seen from `light`. Throws std::invalid_argument for a
-    // resolution outside 16 .. kMaxViewport, a PCF radius outside 0 .. 8 or a negative bias.
-    ShadowMap(pipeline::Rasterizer& rasterizer, const Mesh& mesh, const glm::vec3& light,
+    // One map over the whole mesh (options.cascades is not used). Throws
+    // std::invalid_argument for settings out of range (check_shadow_map_settings).
+    ShadowMap(pipeline::Rasterizer& rasterizer, const Mesh& mesh, const ShadowLight& light,
               const ShadowMapOptions& options = {});
+    ShadowMap(pipeline::Rasterizer& rasterizer, const Mesh& mesh, const glm::vec3& point_light,
+              const ShadowMapOptions& options = {})
+        : ShadowMap(rasterizer, mesh, ShadowLight(point_light), options) {}
+    // options.cascades maps fitted to what `camera` sees.
+    ShadowMap(pipeline::Rasterizer& rasterizer, const Mesh& mesh, const ShadowLight& light,
+              const Camera& camera, const ShadowMapOptions& options);
 
-    // Renders again (the next frame: the mesh or light moved), reusing the map's memory.
-    void render(pipeline::Rasterizer& rasterizer, const Mesh& mesh, const glm::vec3& light);
+    // Renders again (the next frame: the mesh, light or camera moved), reusing the maps'
+    // memory; `camera` null: one map over the whole mesh.
+    void render(pipeline::Rasterizer& rasterizer, const Mesh& mesh, const ShadowLight& light,
+                const Camera* camera = nullptr);
 
     // Fraction of the PCF taps that see `position` (pushed off the surface along `normal`)
-    // from the light.
+    // from the light, in the cascade that holds it (1 outside every cascade).
     float lit_fraction(const glm::vec3& position, const glm::vec3& normal) const;
     // Whether at least half the taps see it (stops reading taps once the answer is known).
     bool lit(const glm::vec3& position, const glm::vec3& normal) const;
+    // The cascade lit() reads for this receiver; cascade_count() when none holds it.
+    int cascade_of(const glm::vec3& position, const glm::vec3& normal) const;
 
     // Sets `bit` in visible[i] for every point i that faces the light (faces_light) and is
     // lit(): SIMD over the points. visible.size() must be points.size().
@@ -67,24 +96,34 @@ public:
     // The same, one point at a time through faces_light() and lit() (the reference).
     void mark_lit_reference(const SurfacePoints& points, uint8_t bit, std::span<uint8_t> visible) const;
 
-    const glm::vec3& light() const { return light_; }
-    const glm::mat4& view_projection() const { return view_projection_; }
-    // The map's window depths, resolution x resolution texels, rows top to bottom.
-    std::span<const float> depth() const { return depth_.depth; }
+    const glm::vec3& light() const { return light_.position; }
+    int cascade_count() const { return int(cascades_.size()); }
+    const LightProjection& projection(int cascade = 0) const { return cascades_[size_t(cascade)].projection; }
+    const glm::mat4& view_projection(int cascade = 0) const { return projection(cascade).view_projection; }
+    // View depths of the camera where each cascade starts and ends (cascade_count() + 1
+    // values); empty for a map over the whole mesh.
+    const std::vector<float>& splits() const { return splits_; }
+    // A cascade's window depths, resolution x resolution texels, rows top to bottom.
+    std::span<const float> depth(int cascade = 0) const { return cascades_[size_t(cascade)].depth.depth; }
     const ShadowMapOptions& options() const { return options_; }
 
 private:
-    // Counts lit taps; with kMajority, stops once at least half are lit or more than half
-    // are not, returning a count on the right side of half.
-    template <bool kMajority>
-    int count_lit(const glm::vec3& position, const glm::vec3& normal) const;
+    struct Cascade {
+        LightProjection projection;
+        VisibilityBuffer depth;
+    };
 
-    glm::vec3 light_;
+    // The cascade holding the receiver and the taps of it that are lit; with kMajority,
+    // stops once at least half are lit or more than half are not, returning a count on the
+    // right side of half.
+    template <bool kMajority>
+    int count_lit(const glm::vec3& position, const glm::vec3& normal, int* cascade = nullptr) const;
+
+    ShadowLight light_;
     ShadowMapOptions options_;
-    glm::mat4 view_projection_;
-    glm::vec3 axis_;            // unit view direction of the light
-    float texel_per_depth_;     // texel size in world units per unit of view depth
-    VisibilityBuffer depth_;
+    Mesh culled_;  // for an orthographic cascade: the triangles that reach its window
+    std::vector<float> splits_;
+    std::vector<Cascade> cascades_;
 };
 
 // A LightTest looking up maps[l] for lights[l] (the maps must be rendered for those lights).
