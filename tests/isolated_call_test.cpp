@@ -4,6 +4,7 @@
 
 #include <csignal>
 #include <stdexcept>
+#include <string>
 #include <vector>
 
 #include "raster/io/isolated_call.h"
@@ -43,6 +44,29 @@ TEST(IsolatedCall, ACrashIsReportedNotShared) {
     EXPECT_FALSE(r.threw);
     EXPECT_NE(r.failure.find("signal 11"), std::string::npos) << r.failure;
     EXPECT_TRUE(r.bytes.empty());
+}
+
+// The child does not run the parent's handlers for stop signals (tessera's clean-up or its
+// polite stop of `render`): SIGTERM ends it, SIGHUP ignored by the parent stays ignored.
+TEST(IsolatedCall, StopSignalsEndTheChildNotTheParentsHandlers) {
+    static volatile std::sig_atomic_t handled = 0;
+    const auto term = std::signal(SIGTERM, [](int) { handled = 1; });
+    const auto hup = std::signal(SIGHUP, SIG_IGN);
+    const IsolatedResult terminated = run_isolated([]() -> std::vector<uint8_t> {
+        std::raise(SIGTERM);
+        return {uint8_t(handled)};
+    }, quick());
+    const IsolatedResult hung_up = run_isolated([]() -> std::vector<uint8_t> {
+        std::raise(SIGHUP);
+        return {7};
+    }, quick());
+    std::signal(SIGTERM, term);
+    std::signal(SIGHUP, hup);
+    EXPECT_FALSE(terminated.ok);
+    EXPECT_NE(terminated.failure.find("signal " + std::to_string(SIGTERM)), std::string::npos) << terminated.failure;
+    ASSERT_TRUE(hung_up.ok) << hung_up.failure;
+    EXPECT_EQ(hung_up.bytes, std::vector<uint8_t>{7});
+    EXPECT_EQ(handled, 0);
 }
 
 TEST(IsolatedCall, AnEndlessLoopTimesOut) {

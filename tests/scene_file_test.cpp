@@ -223,6 +223,25 @@ TEST(SceneFile, SnakeRestsOnTheGroundAndKeepsItsLength) {
     EXPECT_GT(glm::distance(geometry::snake_spine(s, 0.0f, ground).back(), geometry::snake_spine(s, 1.0f, ground).back()), 0.05f);
 }
 
+// The body is an open tube: its front ring must lie inside the head at every moment, on flat
+// and on sloping ground, or the floor shows through a crack at the neck.
+TEST(SceneFile, SnakeNeckRingLiesInsideTheHead) {
+    scene_file::SnakeSpec s;
+    const geometry::GroundHeight ground = [](float x, float z) { return 0.3f * std::sin(x) + 0.1f * z; };
+    for (float t : {0.0f, 0.7f, 1.9f, 3.3f, 5.0f, 8.2f}) {
+        const std::vector<glm::vec3> spine = geometry::snake_spine(s, t, ground);
+        const Mesh body = geometry::snake_body(s, spine);
+        const geometry::SnakeHead head = geometry::snake_head(s, spine);
+        const size_t ring = size_t(s.tessellation.y) + 1;
+        float outermost = 0.0f;  // 1: on the head's surface
+        for (size_t i = body.vertex_count() - ring; i < body.vertex_count(); ++i) {
+            const glm::vec3 local = glm::inverse(head.orientation) * (body.positions[i] - head.centre);
+            outermost = std::max(outermost, glm::length(local / head.radii));
+        }
+        EXPECT_LT(outermost, 0.97f) << "the neck ring leaves the head at time " << t;
+    }
+}
+
 TEST(SceneFile, MeshObjectsLoadObjFilesRelativeToTheScene) {
     const fs::path dir = fs::temp_directory_path() / ("tessera_scene_" + std::to_string(::getpid()));
     fs::create_directories(dir);

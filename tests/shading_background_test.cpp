@@ -2,6 +2,9 @@
 // procedural sky, and the pixel rays FrameShading uses for them.
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <cmath>
+
 #include "raster/core/error.h"
 #include "raster/shade/background_radiance.h"
 #include "raster/shade/frame_shading.h"
@@ -55,6 +58,32 @@ TEST(ShadingBackground, SkyIsBrighterUpThanDownAndShowsTheSun) {
     EXPECT_GT(up.b, down.b);
     EXPECT_EQ(shade::background_radiance(b, b.sky.sun_direction), b.sky.sun);
     EXPECT_TRUE(std::isfinite(shade::background_radiance(b, {0, 0, 0}).r));  // zero direction: no NaN
+}
+
+// A kink in the sky's gradient at the horizon is a bright line there, and a curved mirror shows
+// it as a crease: the colour must change smoothly across the horizon (slope 0 on both sides,
+// no jump in slope anywhere) and keep its sqrt(elevation) law above the horizon band.
+TEST(ShadingBackground, SkyHasNoKinkAtTheHorizon) {
+    scene::Background b;
+    b.kind = scene::Background::Kind::sky;
+    b.sky.sun = glm::vec3(0.0f);  // no glow: the gradient alone
+    const auto at = [&](double elevation) {
+        return glm::dvec3(shade::background_radiance(b, {float(std::cos(elevation)), float(std::sin(elevation)), 0.0f}));
+    };
+    const double h = 1e-3;
+    const double above = glm::length(at(h) - at(0.0)) / h, below = glm::length(at(0.0) - at(-h)) / h;
+    EXPECT_LT(above, 0.2) << "slope just above the horizon, per radian";
+    EXPECT_LT(below, 0.2) << "slope just below the horizon, per radian";
+    // The slope changes by little from step to step across [-30, 30] degrees.
+    double worst = 0.0;
+    for (double e = -0.5; e < 0.5; e += h)
+        worst = std::max(worst, glm::length(at(e + h) - 2.0 * at(e) + at(e - h)) / h);
+    EXPECT_LT(worst, 1.0) << "largest jump in slope between neighbouring 1 mrad steps";
+    const float up = 0.5f;
+    const glm::vec3 expected = glm::mix(b.sky.horizon, b.sky.zenith, std::sqrt(up));
+    const glm::vec3 got = shade::background_radiance(b, {std::sqrt(1.0f - up * up), up, 0.0f});
+    EXPECT_NEAR(got.r, expected.r, 1e-5f);
+    EXPECT_NEAR(got.b, expected.b, 1e-5f);
 }
 
 TEST(ShadingBackground, PixelRaysLookThroughTheCamera) {

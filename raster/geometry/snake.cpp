@@ -84,7 +84,10 @@ SnakeHead snake_head(const SnakeShape& s, const std::vector<glm::vec3>& spine) {
     head.orientation = glm::angleAxis(yaw, glm::vec3(0.0f, 1.0f, 0.0f)) *
                        glm::angleAxis(pitch, glm::vec3(0.0f, 0.0f, 1.0f));
     head.radii = glm::vec3(2.1f, 0.62f, 0.95f) * s.width;
-    head.centre = neck + forward * (0.75f * head.radii.x);
+    // The neck ring of the body (open, semi-axes 0.7 width x 0.49 width) must lie inside the
+    // head, or the floor shows through the gap: 0.4 of the head's length behind its centre its
+    // cross-section is 0.92 of the widest (0.87 x 0.57 width).
+    head.centre = neck + forward * (0.4f * head.radii.x);
     return head;
 }
 

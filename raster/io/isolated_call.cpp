@@ -51,6 +51,11 @@ size_t resident_bytes() {
     const rlimit no_core{0, 0};
     ::setrlimit(RLIMIT_CORE, &no_core);
     for (const int s : {SIGSEGV, SIGBUS, SIGFPE, SIGILL, SIGABRT}) std::signal(s, SIG_DFL);
+    // A stop signal ends the child at once: the parent's handlers would clean up the parent's
+    // files from the child's copy of its state, or (a polite stop) keep the child running. A
+    // signal the parent ignores (SIGHUP under nohup) stays ignored.
+    for (const int s : {SIGINT, SIGTERM, SIGHUP})
+        if (std::signal(s, SIG_DFL) == SIG_IGN) std::signal(s, SIG_IGN);
     if (__sanitizer_set_death_callback) __sanitizer_set_death_callback(nullptr);
     const size_t baseline = resident_bytes();  // the parent's pages this child shares
     std::thread([&limits, baseline] {

@@ -13,7 +13,8 @@
 namespace tessera::scene {
 
 // Procedural sky: a gradient from `horizon` to `zenith` above the horizon, fading to `ground`
-// below it, and a sun disc with a soft glow around `sun_direction`.
+// below it, smooth (no kink) across the horizon, and a sun disc with a soft glow around
+// `sun_direction`.
 struct Sky {
     glm::vec3 zenith{0.10f, 0.28f, 0.65f};
     glm::vec3 horizon{0.70f, 0.80f, 0.92f};

@@ -8,10 +8,23 @@
 namespace tessera::shade {
 namespace {
 
+// The weight of the zenith colour at elevation sine `up` >= 0: sqrt(up), whose slope is
+// infinite at the horizon, eased in over the lowest kHorizonBand by smoothstep so that its
+// slope is 0 there. A kink in the sky's gradient is a bright line at the horizon, and a curved
+// mirror (the metaballs' reflections) shows it as a crease.
+constexpr float kHorizonBand = 0.1f;  // sine of the elevation, about 5.7 degrees
+constexpr float kGroundBand = 0.25f;  // below the horizon, down to the ground colour
+
+float smoothstep01(float x) {
+    x = std::clamp(x, 0.0f, 1.0f);
+    return x * x * (3.0f - 2.0f * x);
+}
+
 glm::vec3 sky_radiance(const scene::Sky& sky, glm::vec3 d) {
     const float up = d.y;
-    glm::vec3 c = up >= 0.0f ? glm::mix(sky.horizon, sky.zenith, std::sqrt(up))
-                             : glm::mix(sky.horizon, sky.ground, std::min(1.0f, -up * 4.0f));
+    glm::vec3 c = up >= 0.0f
+                      ? glm::mix(sky.horizon, sky.zenith, std::sqrt(up) * smoothstep01(up / kHorizonBand))
+                      : glm::mix(sky.horizon, sky.ground, smoothstep01(-up / kGroundBand));
     const float len = glm::length(sky.sun_direction);
     if (len > 0.0f) {
         const float cosine = glm::dot(d, sky.sun_direction / len);
