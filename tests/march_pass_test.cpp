@@ -149,6 +149,38 @@ TEST(MarchPass, BackgroundFillsEmptyPixelsAndFogUsesTheDepthDistance) {
         }
 }
 
+// In fog the far plane is where sight ends: a surface melts into the fog colour over the last
+// quarter of the far distance instead of ending at a hard edge; nearer ones keep the closed form.
+TEST(MarchPass, FogHidesTheFarPlane) {
+    const Camera camera = march_camera(W, H);
+    const RayGenerator rays(camera, W, H);
+    Fog fog;
+    fog.density = glm::vec3(1e-4f);  // thin: transmittance ~1 everywhere in range
+    fog.colour = {0.5f, 0.6f, 0.7f};
+    const int y = H / 2;
+    const glm::vec3 d = rays.direction(W / 2, y);
+    const float far = rays.far_distance(d);
+    const glm::vec4 red(1.0f, 0.0f, 0.0f, 1.0f);
+    float previous_red = 2.0f;
+    for (float fraction : {0.5f, 0.74f, 0.8f, 0.9f, 0.95f, 0.99f, 0.9999f}) {
+        Frame frame;
+        frame.colour[size_t(y) * W + W / 2] = red;
+        frame.depth[size_t(y) * W + W / 2] = rays.window_depth(camera.eye + d * (fraction * far));
+        FogPass(rays, fog).run(frame.all());
+        const glm::vec4 got = frame.colour[size_t(y) * W + W / 2];
+        const glm::vec3 closed_form = fog.apply(glm::vec3(red), camera.eye, d, fraction * far);
+        if (fraction < 0.75f) EXPECT_NEAR(got.r, closed_form.r, 1e-5f) << fraction;
+        if (fraction > 0.999f) EXPECT_NEAR(got.g, fog.colour.g, 1e-2f) << fraction;
+        EXPECT_LE(got.r, previous_red) << "fades monotonically, at " << fraction;
+        previous_red = got.r;
+    }
+    // The sky beyond keeps the closed form (height fog seen upwards lets it through).
+    Frame sky;
+    sky.colour[0] = red;
+    FogPass(rays, fog).run(sky.all());
+    EXPECT_NEAR(sky.colour[0].r, fog.apply(glm::vec3(red), camera.eye, rays.direction(0, 0), INFINITY).r, 1e-6f);
+}
+
 TEST(MarchPass, ASurfaceCutByTheNearPlaneShowsAtTheNearPlane) {
     Camera camera = march_camera(W, H);
     camera.eye = {0.0f, 0.0f, 1.2f};  // the near plane (0.5 ahead) lies inside the sphere

@@ -3,6 +3,12 @@
 // shows is rebuilt from the depth buffer (rasterized triangles and marched surfaces alike;
 // infinity where the depth is the cleared 1.0), and the colour becomes
 // T colour + (1 - T) fog colour with the closed-form transmittance of fog.h.
+//
+// In fog the far plane is where sight ends: over the last quarter of the far distance (along
+// each pixel's ray) T is faded to 0 by a smoothstep, so whatever the far plane cuts (marched
+// terrain, a clipped mesh) melts into the fog instead of ending at a hard edge, and the
+// surfaces a coarse march finds or misses there one pixel apart (the speckles of a distant
+// ridge against the sky) all come out fog-coloured. The background keeps the closed form.
 #pragma once
 #include "raster/march/fog.h"
 #include "raster/core/tile.h"
