@@ -3,6 +3,8 @@
 // JSON, dangling reference); camera keyframes interpolate; scene names resolve.
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <cmath>
 #include <filesystem>
 #include <fstream>
 #include <string>
@@ -12,6 +14,8 @@
 #include "raster/scene_file/scene_library.h"
 #include "raster/scene_file/scene_parse.h"
 #include "raster/geometry/snake.h"
+#include "procedural/heightfield.h"
+#include "procedural/normal_map.h"
 
 namespace fs = std::filesystem;
 using namespace tessera;
@@ -52,6 +56,31 @@ TEST(SceneFile, EveryShippedSceneParsesWithoutWarnings) {
         EXPECT_FALSE(spec.objects.empty() && spec.passes.empty()) << name;
         EXPECT_FALSE(spec.lights.empty()) << name;
     }
+}
+
+// A normal map is a surface's texture, not its shape: on every shipped scene the relief's
+// normals tilt the surface by a few degrees on average, never so far that the lit faces of
+// the object underneath stop reading (the bumpcube's cube once vanished under its stone).
+TEST(SceneFile, ShippedNormalMapsTextureTheSurfaceWithoutHidingIt) {
+    int maps = 0;
+    for (const std::string& name : scene_file::available_scenes({kScenes})) {
+        std::vector<std::string> warnings;
+        const scene_file::SceneSpec spec = scene_file::load_scene_file(scene_file::find_scene(name, {kScenes}), warnings);
+        for (const scene_file::TextureSpec& t : spec.textures) {
+            if (t.kind != scene_file::TextureSpec::Kind::relief_normals) continue;
+            const procedural::NormalMap normals = procedural::normal_map(
+                procedural::generate_heightfield(t.size, t.size, t.relief), t.strength, procedural::Boundary::periodic);
+            double tilt = 0.0;
+            const size_t texels = normals.xyz.size() / 3;
+            for (size_t i = 0; i < texels; ++i)
+                tilt += std::acos(std::clamp(double(normals.xyz[3 * i + 2]), -1.0, 1.0));
+            const double mean_degrees = tilt / double(texels) * 180.0 / 3.14159265358979;
+            EXPECT_GT(mean_degrees, 1.0) << name << ": " << t.name;
+            EXPECT_LT(mean_degrees, 15.0) << name << ": " << t.name;
+            ++maps;
+        }
+    }
+    EXPECT_GE(maps, 2);
 }
 
 TEST(SceneFile, SnakesSceneHasItsIngredients) {
