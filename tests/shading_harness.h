@@ -18,6 +18,7 @@
 #include "raster/scene/scene.h"
 #include "raster/scene_file/scene_build.h"
 #include "raster/shade/frame_shading.h"
+#include "raster/shade/outline.h"
 
 namespace tessera::test {
 
@@ -46,7 +47,7 @@ inline float intersect(glm::vec3 origin, glm::vec3 dir, glm::vec3 a, glm::vec3 b
     return glm::dot(e2, q) * inv;
 }
 
-// Nearest opaque triangle per pixel (depth left at 1: shading does not read it).
+// Nearest opaque triangle per pixel and its window depth (read by the toon outlines).
 inline VisibilityBuffer cast_visibility(const scene::BakedScene& baked, const scene::Scene& scene, int width, int height,
                                         std::vector<float>* nearest = nullptr) {
     VisibilityBuffer vis;
@@ -67,6 +68,10 @@ inline VisibilityBuffer cast_visibility(const scene::BakedScene& baked, const sc
                 }
             }
             if (nearest) (*nearest)[size_t(y) * size_t(width) + size_t(x)] = best;
+            if (best < 1e30f) {
+                const glm::vec4 clip = scene.camera.view_projection() * glm::vec4(scene.camera.eye + dir * best, 1.0f);
+                vis.depth[size_t(y) * size_t(width) + size_t(x)] = clip.z / clip.w * 0.5f + 0.5f;
+            }
         }
     return vis;
 }
@@ -98,6 +103,7 @@ inline Frame render_scene(const scene::Scene& scene, int width, int height) {
     whole.colour = frame.pixels.data();
     whole.colour_stride = size_t(width);
     shade::blend_fragments(shading, transparent, whole);
+    shade::draw_outlines(vis, scene.camera, baked.triangle_material, scene.materials, frame.pixels, 0, height);
     return frame;
 }
 

@@ -29,6 +29,7 @@
 #include "raster/march/surface_pass.h"
 #include "raster/shade/alpha_test.h"
 #include "raster/shade/frame_shading.h"
+#include "raster/shade/outline.h"
 #include "raster/shadow/light_mask.h"
 #include "raster/shadow/shadow_map.h"
 #include "raster/shadow/surface_points.h"
@@ -462,6 +463,14 @@ void FrameRenderer::Impl::render_region(const FrameState& frame, const Region& r
             for (int y = rect.y0; y < rect.y1; ++y)
                 std::fill_n(&tile.colour_at(rect.x0, y), rect.width(), glm::vec4(0.0f));
         });
+        stats.tiles_ms += ms_since(t0);
+    }
+    if (shade::any_outlined(scene.scene.materials)) {
+        // Over the finished pixels (after fog): it reads the neighbours' depths, across tiles.
+        TraceScope trace("outlines");
+        const auto t0 = Clock::now();
+        shade::draw_outlines(visibility, region.camera, frame.baked.triangle_material, scene.scene.materials, colour,
+                             rows_from, rows_to);
         stats.tiles_ms += ms_since(t0);
     }
     stats.shadowed_pixels += shadowed.load();

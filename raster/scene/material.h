@@ -20,7 +20,7 @@ enum class ShadingModel : uint8_t {
     flat,     // one colour per triangle: the face normal, lit at the triangle's centroid
     gouraud,  // Blinn-Phong per vertex, the colour interpolated (per-vertex shading)
     phong,    // Blinn-Phong per pixel with N, V, L interpolated and renormalised
-    toon,     // two diffuse levels, black silhouette (NPR shading)
+    toon,     // two diffuse levels, black silhouette, ink outline (NPR shading; shade/outline.h)
 };
 
 inline constexpr int32_t kNoTexture = -1;
