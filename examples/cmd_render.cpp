@@ -450,11 +450,12 @@ void FrameLoop::report(int f, const fs::path& path, const render::FrameStats& st
     times_.add(st);
     if (o_.stats)
         std::fprintf(stderr,
-                     "%sframe %d: %.1f ms (animate %.1f, bake %.1f, bvh %.1f, visibility %.1f [vertex %.1f, "
-                     "setup+bin %.1f], tiles %.1f [shade, shadows, passes]), %llu triangles, %llu shadowed "
+                     "%sframe %d: %.1f ms (animate %.1f, bake %.1f, bvh %.1f [%llu/%llu objects built], visibility %.1f "
+                     "[vertex %.1f, setup+bin %.1f], tiles %.1f [shade, shadows, passes]), %llu triangles, %llu shadowed "
                      "pixels, heap %.1f MiB, rss %.1f MiB\n",
                      tty_ ? "\r\033[K" : "", f, st.total_ms, st.animate_ms, st.bake_ms, st.bvh_ms,
-                     st.visibility_ms, st.raster.vertex_ms, st.raster.setup_bin_ms, st.tiles_ms,
+                     static_cast<unsigned long long>(st.bvh_objects_built),
+                     static_cast<unsigned long long>(st.bvh_objects), st.visibility_ms, st.raster.vertex_ms, st.raster.setup_bin_ms, st.tiles_ms,
                      static_cast<unsigned long long>(st.triangles),
                      static_cast<unsigned long long>(st.shadowed_pixels), heap_mib(), resident_mib());
     if (progress_) {

@@ -23,4 +23,14 @@ struct Mesh {
     size_t triangle_count() const { return indices.size() / 3; }
 };
 
+// A range of a mesh that moves as one (an object of a baked scene): triangles
+// [first_triangle, first_triangle + triangle_count), whose indices all lie in
+// [first_vertex, first_vertex + vertex_count). `still`: the part is the same in every frame
+// (its object is not animated), so work spent on it once serves the whole animation.
+struct MeshPart {
+    size_t first_vertex = 0, vertex_count = 0;
+    size_t first_triangle = 0, triangle_count = 0;
+    bool still = false;
+};
+
 }  // namespace tessera

@@ -22,19 +22,23 @@ struct DepthCache {
 // behind them (Embree passes the context through; it must be the first member).
 struct SkipContext {
     RTCIntersectContext context;
+    const RayScene* scene;
     const uint8_t* skip;
 };
 
 void skip_filter(const RTCFilterFunctionNArguments* args) {
-    const uint8_t* skip = reinterpret_cast<const SkipContext*>(args->context)->skip;
+    const auto* c = reinterpret_cast<const SkipContext*>(args->context);
     for (unsigned i = 0; i < args->N; ++i)
-        if (args->valid[i] != 0 && skip[RTCHitN_primID(args->hit, args->N, i)]) args->valid[i] = 0;
+        if (args->valid[i] != 0 &&
+            c->skip[c->scene->triangle(RTCHitN_geomID(args->hit, args->N, i), RTCHitN_primID(args->hit, args->N, i))])
+            args->valid[i] = 0;
 }
 
-SkipContext make_context(bool coherent, std::span<const uint8_t> skip) {
+SkipContext make_context(const RayScene& scene, bool coherent, std::span<const uint8_t> skip) {
     SkipContext c;
     if (coherent) c.context = coherent_context();
     else rtcInitIntersectContext(&c.context);
+    c.scene = &scene;
     c.skip = skip.data();
     if (!skip.empty()) c.context.filter = skip_filter;
     return c;
@@ -75,7 +79,7 @@ struct Frame {
 };
 
 void trace_single(const Frame& frame, const TileRect& tile) {
-    SkipContext skip = make_context(false, frame.skip);
+    SkipContext skip = make_context(frame.scene, false, frame.skip);
     RTCIntersectContext& context = skip.context;
     DepthCache cache;
     for (int y = tile.y0; y < tile.y1; ++y)
@@ -95,14 +99,15 @@ void trace_single(const Frame& frame, const TileRect& tile) {
             hit.hit.geomID = RTC_INVALID_GEOMETRY_ID;
             rtcIntersect1(frame.scene.handle(), &context, &hit);
             if (hit.hit.geomID != RTC_INVALID_GEOMETRY_ID)
-                frame.write(x, y, hit.hit.primID, origin, direction, hit.ray.tfar, cache);
+                frame.write(x, y, frame.scene.triangle(hit.hit.geomID, hit.hit.primID), origin, direction,
+                            hit.ray.tfar, cache);
         }
 }
 
 template <int N>
 void trace_packets(const Frame& frame, const TileRect& tile) {
     using P = Packet<N>;
-    SkipContext skip = make_context(true, frame.skip);
+    SkipContext skip = make_context(frame.scene, true, frame.skip);
     RTCIntersectContext& context = skip.context;
     DepthCache cache;
     for (int by = tile.y0; by < tile.y1; by += P::kHeight)
@@ -122,7 +127,8 @@ void trace_packets(const Frame& frame, const TileRect& tile) {
             for (int lane = 0; lane < N; ++lane)
                 if (valid[lane] && packet.hit.geomID[lane] != RTC_INVALID_GEOMETRY_ID)
                     frame.write(bx + lane % P::kWidth, by + lane / P::kWidth,
-                                packet.hit.primID[lane], origin[lane], direction[lane],
+                                frame.scene.triangle(packet.hit.geomID[lane], packet.hit.primID[lane]),
+                                origin[lane], direction[lane],
                                 packet.ray.tfar[lane], cache);
         }
 }

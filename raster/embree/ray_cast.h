@@ -1,8 +1,8 @@
 // The ray-cast renderer's visibility pass: one primary ray per pixel centre, traced by Embree,
-// written into the same VisibilityBuffer the rasterizer fills (triangle id = Embree primitive
-// id; window depth = the hit triangle's plane through the same view-projection, evaluated at
-// the pixel centre, i.e. the exact depth of the hit, see PixelRays::depth_plane), so shading
-// cannot tell which renderer found the surface.
+// written into the same VisibilityBuffer the rasterizer fills (triangle id = the mesh's id of
+// the hit, RayScene::triangle; window depth = the hit triangle's plane through the same
+// view-projection, evaluated at the pixel centre, i.e. the exact depth of the hit, see
+// PixelRays::depth_plane), so shading cannot tell which renderer found the surface.
 //
 // Work is split into fixed 32x32-pixel tiles run in parallel by oneTBB; inside a tile, rays go
 // in coherent packets (4x2 pixels for 8 lanes, 4x4 for 16) or one at a time (the reference

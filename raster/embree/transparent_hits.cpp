@@ -17,6 +17,7 @@ struct Hit {
 // are accepted and shorten the ray, so nothing behind the opaque surface is visited for long.
 struct CollectContext {
     RTCIntersectContext context;  // first: Embree hands the filter this pointer
+    const RayScene* scene;
     const uint8_t* transparent;
     std::vector<Hit>* hits;
 };
@@ -25,7 +26,8 @@ void collect_filter(const RTCFilterFunctionNArguments* args) {
     const auto* c = reinterpret_cast<const CollectContext*>(args->context);
     for (unsigned i = 0; i < args->N; ++i) {
         if (args->valid[i] == 0) continue;
-        const uint32_t triangle = RTCHitN_primID(args->hit, args->N, i);
+        const uint32_t triangle =
+            c->scene->triangle(RTCHitN_geomID(args->hit, args->N, i), RTCHitN_primID(args->hit, args->N, i));
         if (!c->transparent[triangle]) continue;
         c->hits->push_back({triangle, RTCRayN_id(args->ray, args->N, i)});
         args->valid[i] = 0;
@@ -40,7 +42,7 @@ void for_each_transparent_hit(const RayScene& scene, const PixelRays& rays, std:
     const TileRect& tile = opaque.rect;
     using P = Packet<16>;
     std::vector<Hit> hits;
-    CollectContext collect{coherent_context(), transparent.data(), &hits};
+    CollectContext collect{coherent_context(), &scene, transparent.data(), &hits};
     collect.context.filter = collect_filter;
     struct Candidate {
         uint32_t triangle;

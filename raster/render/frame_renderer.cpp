@@ -68,10 +68,11 @@ glm::vec3 shadow_target(const scene::Light& light) {
 }  // namespace
 
 // What every region of one frame shares, built once per frame: the animated scene baked, the
-// BVH, the lights' shadow tests, the metaballs at this time.
+// BVH (kept by the renderer, see Impl::rays), the lights' shadow tests, the metaballs at this
+// time.
 struct FrameState {
     scene::BakedScene baked;
-    std::optional<embree::RayScene> rays;
+    const embree::RayScene* rays = nullptr;
     std::vector<glm::vec3> light_targets;
     shadow::LightTest light_test;
     std::vector<march::MetaballField> metaballs;
@@ -109,6 +110,9 @@ struct FrameRenderer::Impl {
     int samples;
     pipeline::Rasterizer rasterizer;
     std::optional<embree::RayDevice> device;
+    // The BVH of the baked scene, one part per object, kept from frame to frame: an object
+    // that did not move keeps its BVH (embree/scene.h, "Animation by parts").
+    std::optional<embree::RayScene> rays;
     std::vector<procedural::TerrainField> terrains;  // one per terrain pass, built once
     int rows_first = 0, rows_last = 1 << 30;  // set_rows
     // Reused from frame to frame (and region to region): its pages are touched once.
@@ -241,14 +245,22 @@ void FrameRenderer::Impl::prepare(float time, FrameState& frame, FrameStats& sta
         TraceScope trace("bake");
         const auto t0 = Clock::now();
         frame.baked = scene::bake(s);
-        embree::reserve_ray_padding(frame.baked.mesh);
         stats.bake_ms = ms_since(t0);
     }
     stats.triangles = frame.baked.mesh.triangle_count();
     if (device) {
         TraceScope trace("bvh");
         const auto t0 = Clock::now();
-        frame.rays.emplace(*device, frame.baked.mesh, embree::BvhUpdate::rebuild);
+        try {
+            if (rays) rays->update(frame.baked.mesh, frame.baked.objects);
+            else rays.emplace(*device, frame.baked.mesh, frame.baked.objects);
+        } catch (...) {
+            rays.reset();  // half updated: the next frame builds afresh
+            throw;
+        }
+        frame.rays = &*rays;
+        stats.bvh_objects = frame.baked.objects.size();
+        stats.bvh_objects_built = rays->parts_built();
         stats.bvh_ms = ms_since(t0);
     }
     if (shadows != ShadowMode::none && !s.lights.empty()) {

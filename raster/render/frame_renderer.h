@@ -49,6 +49,9 @@ struct FrameStats {
     double animate_ms = 0, bake_ms = 0, bvh_ms = 0, visibility_ms = 0, tiles_ms = 0, total_ms = 0;
     uint64_t triangles = 0;
     uint64_t shadowed_pixels = 0;
+    // Ray tracing: the objects in the BVH and how many of them had theirs built this frame
+    // (the others did not move since the last frame).
+    uint64_t bvh_objects = 0, bvh_objects_built = 0;
     pipeline::RasterStats raster;  // the raster renderer's own counts and stage times
 };
 

@@ -83,6 +83,10 @@ BakedScene bake(const Scene& scene) {
     out.indices.resize(first_index[n]);
     baked.triangle_material.resize(first_index[n] / 3);
     baked.vertex_material.resize(first_vertex[n]);
+    baked.objects.resize(n);
+    for (size_t i = 0; i < n; ++i)
+        baked.objects[i] = MeshPart{first_vertex[i], first_vertex[i + 1] - first_vertex[i], first_index[i] / 3,
+                                    (first_index[i + 1] - first_index[i]) / 3, !scene.objects[i].animate};
 
     tbb::parallel_for(size_t(0), n, [&](size_t i) {
         const Object& o = scene.objects[i];

@@ -51,6 +51,7 @@ struct BakedScene {
     Mesh mesh;                               // normals, uvs present whenever any object has them
     std::vector<uint32_t> triangle_material;  // one per triangle
     std::vector<uint32_t> vertex_material;    // one per vertex (Gouraud colours per vertex)
+    std::vector<MeshPart> objects;            // where each object's vertices and triangles went
 };
 
 // Applies each object's model matrix to its vertices (normals by the inverse transpose,
