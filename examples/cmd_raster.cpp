@@ -88,6 +88,11 @@ int run_material(const Options& o, int width, int height) {
                     "shadowed_pixels=%llu\n",
                     stats.bake_ms, stats.bvh_ms, stats.visibility_ms, stats.tiles_ms, stats.total_ms,
                     (unsigned long long)stats.shadowed_pixels);
+        // The tile stage by pass, thread time summed over the tiles (render/tile_pass_times.h).
+        std::printf("stats: tiles_thread_ms=%.3f", stats.tile_passes.tiles_ms);
+        for (size_t p = 0; p < render::kTilePasses; ++p)
+            std::printf(" %s_ms=%.3f", std::string(render::tile_pass_name(render::TilePass(p))).c_str(), stats.tile_passes.ms[p]);
+        std::printf("\n");
     }
     return 0;
 }

@@ -15,6 +15,7 @@
 #include <unistd.h>
 
 #include <algorithm>
+#include <array>
 #include <charconv>
 #include <atomic>
 #include <chrono>
@@ -250,11 +251,28 @@ PendingFrames pending_frames(const Options& o, const RenderPlan& plan) {
     return pending;
 }
 
+// "shade 1.0, background 0.1, ..., of tiles 2.0 thread ms": the tile stage's passes
+// (render/tile_pass_times.h), `ms(p)` for pass p, whole tiles `tiles`.
+template <class PassMs>
+std::string tile_pass_list(const PassMs& ms, double tiles) {
+    std::string out;
+    char item[64];
+    for (size_t p = 0; p < render::kTilePasses; ++p) {
+        std::snprintf(item, sizeof item, "%s %.1f, ", std::string(render::tile_pass_name(render::TilePass(p))).c_str(), ms(p));
+        out += item;
+    }
+    std::snprintf(item, sizeof item, "of tiles %.1f thread ms", tiles);
+    return out + item;
+}
+
 // Per-stage times of the frames rendered, for --stats and its summary.
 struct StageTimes {
     std::vector<double> total, animate, bake, bvh, visibility, tiles;
+    std::array<std::vector<double>, render::kTilePasses + 1> tile_passes;  // and whole tiles, last
 
     void add(const render::FrameStats& st) {
+        for (size_t p = 0; p < render::kTilePasses; ++p) tile_passes[p].push_back(st.tile_passes.ms[p]);
+        tile_passes.back().push_back(st.tile_passes.tiles_ms);
         total.push_back(st.total_ms);
         animate.push_back(st.animate_ms);
         bake.push_back(st.bake_ms);
@@ -451,11 +469,13 @@ void FrameLoop::report(int f, const fs::path& path, const render::FrameStats& st
     if (o_.stats)
         std::fprintf(stderr,
                      "%sframe %d: %.1f ms (animate %.1f, bake %.1f, bvh %.1f [%llu/%llu objects built], visibility %.1f "
-                     "[vertex %.1f, setup+bin %.1f], tiles %.1f [shade, shadows, passes]), %llu triangles, %llu shadowed "
+                     "[vertex %.1f, setup+bin %.1f], tiles %.1f [%s]), %llu triangles, %llu shadowed "
                      "pixels, heap %.1f MiB, rss %.1f MiB\n",
                      tty_ ? "\r\033[K" : "", f, st.total_ms, st.animate_ms, st.bake_ms, st.bvh_ms,
                      static_cast<unsigned long long>(st.bvh_objects_built),
-                     static_cast<unsigned long long>(st.bvh_objects), st.visibility_ms, st.raster.vertex_ms, st.raster.setup_bin_ms, st.tiles_ms,
+                     static_cast<unsigned long long>(st.bvh_objects), st.visibility_ms, st.raster.vertex_ms,
+                     st.raster.setup_bin_ms, st.tiles_ms,
+                     tile_pass_list([&](size_t p) { return st.tile_passes.ms[p]; }, st.tile_passes.tiles_ms).c_str(),
                      static_cast<unsigned long long>(st.triangles),
                      static_cast<unsigned long long>(st.shadowed_pixels), heap_mib(), resident_mib());
     if (progress_) {
@@ -486,10 +506,13 @@ int FrameLoop::finish(int stopped_by) {
     if (o_.stats && done_ > 0)
         std::fprintf(stderr,
                      "summary: %zu frames of %dx%d in %.2f s (%.2f fps); median per frame: total %.1f ms, animate %.1f, "
-                     "bake %.1f, bvh %.1f, visibility %.1f, tiles %.1f; peak rss %.1f MiB\n",
+                     "bake %.1f, bvh %.1f, visibility %.1f, tiles %.1f [%s]; peak rss %.1f MiB\n",
                      done_, plan_.width, plan_.height, elapsed, double(done_) / elapsed, median(times_.total),
                      median(times_.animate), median(times_.bake), median(times_.bvh), median(times_.visibility),
-                     median(times_.tiles), peak_resident_mib());
+                     median(times_.tiles),
+                     tile_pass_list([&](size_t p) { return median(times_.tile_passes[p]); },
+                                    median(times_.tile_passes.back())).c_str(),
+                     peak_resident_mib());
     if (stopped_by) {
         std::fprintf(stderr, "tessera: interrupted by %s: %zu frame(s) written; rerun with --resume to continue\n",
                      signal_name(stopped_by).c_str(), done_);

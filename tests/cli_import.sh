@@ -172,6 +172,12 @@ read -r red blue white <<<"$(stats "$dir/cube.png")"
     --repeat 2 --stats --out-color "$dir/ball.png" >"$dir/ball.out" 2>/dev/null || fail "ball.ply --shade material"
 grep -q 'model_triangles=512 ' "$dir/ball.out" || fail "ball.ply: $(cat "$dir/ball.out")"
 grep -Eq '^frame_ms median=' "$dir/ball.out" || fail "ball.ply: no frame_ms line"
+# The tile stage by pass (thread ms), every one >= 0, together at most the whole tiles' time.
+awk '/^stats: tiles_thread_ms=/ {
+    found = 1; split($2, t, "="); sum = 0
+    for (i = 3; i <= NF; i++) { split($i, kv, "="); if (kv[1] !~ /_ms$/ || kv[2] < 0) exit 1; sum += kv[2] }
+    if (NF != 10 || sum > t[2] + 0.001 * NF) exit 1
+} END { exit !found }' "$dir/ball.out" || fail "ball.ply: no tile pass times: $(cat "$dir/ball.out")"
 
 # A missing texture is one warning naming it; the model still renders.
 err=$("$tessera" raster --mesh "$dir/lost.obj" --size 32x32 --shade material --out-color "$dir/lost.png" 2>&1 >/dev/null) ||

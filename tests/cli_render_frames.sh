@@ -20,7 +20,18 @@ render --scene flag --size 48x32 --frames 4 --out "$dir/tif/one.tif" || fail "si
 [ -f "$dir/tif/one.tif" ] || fail "no tif"
 
 # Shards: 0/2 + 1/2 and 0/3 + 1/3 + 2/3 give exactly the frames of one run, byte for byte.
-render --scene toon --size 64x40 --frames 1:7 --out "$dir/all/t_####.png" || fail "full run exited $?"
+# (The full run also prints --stats: the shards, without, must still match it byte for byte.)
+render --scene toon --size 64x40 --frames 1:7 --stats --out "$dir/all/t_####.png" 2>"$dir/stats" || fail "full run exited $?"
+# --stats: per frame and in the summary, the tile stage by pass: "tiles W [shade A, background
+# B, ..., fog H, of tiles T thread ms]", every pass >= 0 and together at most T (each printed
+# to 0.1 ms, hence the rounding allowance).
+passes=$(sed -n 's/.* tiles [0-9.]* \[\(shade [^]]*thread ms\)\].*/\1/p' "$dir/stats")
+[ "$(wc -l <<<"$passes")" -eq 8 ] || fail "expected 7 frame lines and a summary with tile passes: $(cat "$dir/stats")"
+awk -F', ' '{
+    n = split($0, item, ", "); sum = 0
+    for (i = 1; i < n; i++) { split(item[i], kv, " "); if (kv[2] < 0) exit 1; sum += kv[2] }
+    split(item[n], last, " "); if (last[1] != "of" || last[3] < 0 || sum > last[3] + 0.05 * n) exit 1
+}' <<<"$passes" || fail "tile pass times do not parse or add up: $passes"
 for n in 2 3; do
   for ((i = 0; i < n; i++)); do
     render --scene toon --size 64x40 --frames 1:7 --shard $i/$n --out "$dir/shard$n/t_####.png" || fail "shard $i/$n exited $?"

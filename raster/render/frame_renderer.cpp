@@ -96,7 +96,11 @@ struct RegionPasses {
     uint32_t all_lit = 0;
     PixelRays pixel_rays;
     march::RayGenerator march_rays;
-    std::vector<std::function<void(const Tile&)>> compute;
+    struct ComputePass {
+        TilePass kind;
+        std::function<void(const Tile&)> run;
+    };
+    std::vector<ComputePass> compute;
 
     RegionPasses(const AnimatedScene& scene, const FrameState& frame, const Region& region,
                  std::span<const procedural::TerrainField> terrains);
@@ -124,6 +128,10 @@ struct FrameRenderer::Impl {
 
     // Multisampled ray casting: each thread's layers of the tile in hand.
     tbb::enumerable_thread_specific<CoverageLayers> layers;
+    // The frame's per-pass tile times; `clock` points at it only while a frame whose stats
+    // were asked for renders, so without stats no pass reads the clock.
+    TilePassClock pass_clock;
+    TilePassClock* clock = nullptr;
 
     Impl(AnimatedScene& s, int w, int h, RendererKind r, ShadowMode sh, int n)
         : scene(s), width(w), height(h), renderer(r), shadows(sh), samples(n) {
@@ -176,9 +184,12 @@ void FrameRenderer::Impl::frame(float time, FrameStats* stats, const Body& body)
     FrameStats& st = stats ? *stats : local;
     const auto t_frame = Clock::now();
     st = FrameStats{};
+    clock = stats ? &pass_clock : nullptr;
+    pass_clock.reset();
     FrameState state;
     prepare(time, state, st);
     body(state, st);
+    st.tile_passes = pass_clock.times();
     st.total_ms = ms_since(t_frame);
 }
 
@@ -325,18 +336,18 @@ RegionPasses::RegionPasses(const AnimatedScene& scene, const FrameState& frame, 
             case PassSpec::Kind::terrain: {
                 auto pass = std::make_shared<march::SurfacePass<march::SlabSurface<procedural::TerrainField>>>(
                     march::terrain_surface(terrains[terrain_i++]), march_rays, p.settings, look, s.background);
-                compute.push_back([pass](const Tile& t) { pass->run(t); });
+                compute.push_back({TilePass::terrain, [pass](const Tile& t) { pass->run(t); }});
                 break;
             }
             case PassSpec::Kind::metaballs: {
                 auto pass = std::make_shared<march::SurfacePass<march::MetaballSurface>>(
                     march::MetaballSurface{frame.metaballs[metaball_i++]}, march_rays, p.settings, look, s.background);
-                compute.push_back([pass](const Tile& t) { pass->run(t); });
+                compute.push_back({TilePass::metaballs, [pass](const Tile& t) { pass->run(t); }});
                 break;
             }
             case PassSpec::Kind::fog: {
                 auto pass = std::make_shared<march::FogPass>(march_rays, p.fog);
-                compute.push_back([pass](const Tile& t) { pass->run(t); });
+                compute.push_back({TilePass::fog, [pass](const Tile& t) { pass->run(t); }});
                 break;
             }
         }
@@ -380,7 +391,13 @@ void FrameRenderer::Impl::run_tile_passes(const FrameState& frame, const RegionP
     TraceScope trace("tile", "tile", tile.rect.x0, tile.rect.y0);
     {
         TraceScope t("shade", "tile");
-        shade::shade_tile(passes.shading, tile);
+        const TimedPass timed(clock, TilePass::shade);
+        shade::shade_surfaces(passes.shading, tile);
+    }
+    {
+        TraceScope t("background", "tile");
+        const TimedPass timed(clock, TilePass::background);
+        shade::shade_background(passes.shading, tile);
     }
     // Triangles outside the opaque pass, in front of its surface, in submission order: the
     // rasterizer replays its bins, rays collect them. Alpha-tested ones are decided first
@@ -388,6 +405,7 @@ void FrameRenderer::Impl::run_tile_passes(const FrameState& frame, const RegionP
     std::vector<shade::DepthFragment> blended;
     if (!frame.transparent.empty()) {
         TraceScope t("transparent", "tile");
+        const TimedPass timed(clock, TilePass::transparent);
         std::vector<shade::DepthFragment> masked;
         const auto add = [&](uint32_t triangle, std::span<const pipeline::Fragment> f) {
             auto& to = frame.transparent[triangle] == kAlphaTested ? masked : blended;
@@ -399,20 +417,25 @@ void FrameRenderer::Impl::run_tile_passes(const FrameState& frame, const RegionP
             embree::for_each_transparent_hit(*frame.rays, passes.pixel_rays, frame.transparent, tile, add);
         if (!masked.empty()) shade::resolve_alpha_tested(passes.shading, masked, tile);
     }
-    if (!passes.subset_shading.empty()) shade_shadows(frame, passes, visibility, tile, shadowed);
+    if (!passes.subset_shading.empty()) {
+        const TimedPass timed(clock, TilePass::shadows);
+        shade_shadows(frame, passes, visibility, tile, shadowed);
+    }
     if (!blended.empty()) {
         // Blended over what is drawn so far, in submission order, where still in front (an
         // alpha-tested surface may have come nearer).
         TraceScope t("blend", "tile");
+        const TimedPass timed(clock, TilePass::blend);
         std::vector<shade::CoveredPixel> fragments;
         fragments.reserve(blended.size());
         for (const shade::DepthFragment& f : blended)
             if (f.depth < tile.depth_at(f.x, f.y)) fragments.push_back({f.x, f.y, f.triangle});
         if (!fragments.empty()) shade::blend_fragments(passes.shading, fragments, tile);
     }
-    for (const auto& pass : passes.compute) {
+    for (const RegionPasses::ComputePass& pass : passes.compute) {
         TraceScope t("compute pass", "tile");
-        pass(tile);
+        const TimedPass timed(clock, pass.kind);
+        pass.run(tile);
     }
 }
 
@@ -431,7 +454,9 @@ void FrameRenderer::Impl::render_region(const FrameState& frame, const Region& r
         options.transparent = frame.transparent;
         options.samples = samples;
         const pipeline::TilePass pass = [&](const pipeline::TileContext& c) {
-            if (in_rows(c.rect)) run_tile_passes(frame, passes, visibility, c, &c, shadowed);
+            if (!in_rows(c.rect)) return;
+            const TimedTile timed(clock);
+            run_tile_passes(frame, passes, visibility, c, &c, shadowed);
         };
         pipeline::RasterStats raster;
         rasterizer.render(frame.baked.mesh, region.camera.view_projection(), pipeline::Viewport(w, h), options,
@@ -452,6 +477,7 @@ void FrameRenderer::Impl::render_region(const FrameState& frame, const Region& r
         colour.resize(size_t(w) * size_t(h));
         parallel_for_tiles(TileGrid(w, h, 64), [&](int, const TileRect& rect) {
             const Tile tile = frame_tile(visibility, colour.data(), rect);
+            const TimedTile timed(in_rows(rect) ? clock : nullptr);
             if (in_rows(rect) && samples > 1) {
                 // The passes once per layer of distinct surfaces, resolved (coverage_layers.h),
                 // as the rasterizer runs them.

@@ -33,6 +33,7 @@
 #include "raster/pipeline/rasterizer.h"
 #include "raster/render/band_layout.h"
 #include "raster/render/animated_scene.h"
+#include "raster/render/tile_pass_times.h"
 
 namespace tessera::render {
 
@@ -45,13 +46,15 @@ ShadowMode parse_shadow_mode(std::string_view name);
 
 struct FrameStats {
     // visibility: the rasterizer's vertex, setup/bin and tile raster stages, or Embree's
-    // primary rays; tiles: the per-tile work after it (shading, shadows, blending, passes).
+    // primary rays; tiles: the per-tile work after it (shading, shadows, blending, passes),
+    // wall time, broken into its passes in tile_passes (thread time, tile_pass_times.h).
     double animate_ms = 0, bake_ms = 0, bvh_ms = 0, visibility_ms = 0, tiles_ms = 0, total_ms = 0;
     uint64_t triangles = 0;
     uint64_t shadowed_pixels = 0;
     // Ray tracing: the objects in the BVH and how many of them had theirs built this frame
     // (the others did not move since the last frame).
     uint64_t bvh_objects = 0, bvh_objects_built = 0;
+    TilePassTimes tile_passes;
     pipeline::RasterStats raster;  // the raster renderer's own counts and stage times
 };
 

@@ -186,6 +186,17 @@ void FrameShading::shade_reference(std::span<const CoveredPixel> pixels, std::sp
 }
 
 void shade_tile(const FrameShading& shading, const Tile& tile) {
+    shade_surfaces(shading, tile);
+    shade_background(shading, tile);
+}
+
+void shade_background(const FrameShading& shading, const Tile& tile) {
+    for (int y = tile.rect.y0; y < tile.rect.y1; ++y)
+        for (int x = tile.rect.x0; x < tile.rect.x1; ++x)
+            if (tile.active(x, y) && tile.triangle_at(x, y) == kNoTriangle) tile.colour_at(x, y) = shading.background(x, y);
+}
+
+void shade_surfaces(const FrameShading& shading, const Tile& tile) {
     std::vector<CoveredPixel> pixels;
     pixels.reserve(size_t(tile.width()) * size_t(tile.height()));
     for (int y = tile.rect.y0; y < tile.rect.y1; ++y)
@@ -193,7 +204,6 @@ void shade_tile(const FrameShading& shading, const Tile& tile) {
             if (!tile.active(x, y)) continue;
             const uint32_t id = tile.triangle_at(x, y);
             if (id != kNoTriangle) pixels.push_back({x, y, id});
-            else tile.colour_at(x, y) = shading.background(x, y);
         }
     std::vector<glm::vec4> colours(pixels.size());
     shading.shade(pixels, colours);

@@ -78,8 +78,11 @@ private:
 };
 
 // The opaque pass of a tile: visible pixels shaded, the others given the background (pixels
-// the tile does not hold, Tile::coverage, are left alone).
+// the tile does not hold, Tile::coverage, are left alone). It is shade_surfaces then
+// shade_background, which write disjoint pixels (callers time them apart).
 void shade_tile(const FrameShading& shading, const Tile& tile);
+void shade_surfaces(const FrameShading& shading, const Tile& tile);
+void shade_background(const FrameShading& shading, const Tile& tile);
 
 // Alpha blending (glBlendFunc(GL_SRC_ALPHA, GL_ONE_MINUS_SRC_ALPHA)) for the colour, c = c_src
 // * a_src + c_dst * (1 - a_src). Coverage composes as "over", a = a_src + a_dst * (1 - a_src)
