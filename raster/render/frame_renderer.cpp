@@ -53,19 +53,19 @@ ShadowMode parse_shadow_mode(std::string_view name) {
 namespace {
 
 
-// Shadow rays need a point to aim at: a directional light (w = 0) becomes a point far along
-// its direction, far beyond any scene here, so the rays are parallel to within 1e-4 rad.
+// A directional light's stand-in point (shadow_target): far beyond any scene here, so the
+// rays are parallel to within 1e-4 rad.
 constexpr float kDistantLight = 1.0e4f;
 
 // Triangles by how visibility treats them (FrameState::transparent).
 constexpr uint8_t kOpaque = 0, kBlended = 1, kAlphaTested = 2;
 
+}  // namespace
+
 glm::vec3 shadow_target(const scene::Light& light) {
     const glm::vec3 p(light.position);
     return light.position.w == 0.0f ? glm::normalize(p) * kDistantLight : p;
 }
-
-}  // namespace
 
 // What every region of one frame shares, built once per frame: the animated scene baked, the
 // BVH (kept by the renderer, see Impl::rays), the lights' shadow tests, the metaballs at this

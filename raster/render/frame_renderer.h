@@ -44,6 +44,10 @@ enum class ShadowMode { none, map, rays };
 RendererKind parse_renderer(std::string_view name);
 ShadowMode parse_shadow_mode(std::string_view name);
 
+// The point shadows are tested against for `light`: its position, or for a directional light
+// (w = 0) a point 10^4 units away along its direction.
+glm::vec3 shadow_target(const scene::Light& light);
+
 struct FrameStats {
     // visibility: the rasterizer's vertex, setup/bin and tile raster stages, or Embree's
     // primary rays; tiles: the per-tile work after it (shading, shadows, blending, passes),
