@@ -4,25 +4,15 @@
 #include <tbb/info.h>
 
 #include <cstdio>
-#include <fstream>
 #include <string>
 #include <thread>
 
 #include "examples/command.h"
+#include "examples/machine.h"
 #include "examples/resident_memory.h"
 
 namespace tessera::cli {
 namespace {
-
-std::string cpu_model() {
-    std::ifstream cpuinfo("/proc/cpuinfo");
-    for (std::string line; std::getline(cpuinfo, line);)
-        if (line.rfind("model name", 0) == 0) {
-            const auto colon = line.find(':');
-            if (colon != std::string::npos) return line.substr(colon + 2);
-        }
-    return "unknown";
-}
 
 Run define_info(CLI::App& root) {
     root.add_subcommand("info", "print the build's SIMD target, cores and libraries");
@@ -30,13 +20,7 @@ Run define_info(CLI::App& root) {
         std::printf("cpu: %s\n", cpu_model().c_str());
         std::printf("hardware threads: %u (oneTBB default concurrency %d)\n",
                     std::thread::hardware_concurrency(), tbb::info::default_concurrency());
-#if defined(__AVX512F__)
-        std::printf("simd: AVX-512 (16 float lanes)\n");
-#elif defined(__AVX2__)
-        std::printf("simd: AVX2 (8 float lanes)\n");
-#else
-        std::printf("simd: scalar fallback\n");
-#endif
+        std::printf("simd: %s\n", simd_target());
         RTCDevice device = rtcNewDevice(nullptr);
         if (device) {
             std::printf("embree: %s, native ISA %s\n", RTC_VERSION_STRING,

@@ -42,6 +42,13 @@ double status_mib(const std::string& key) {
 double resident_mib() { return status_mib("VmRSS"); }
 double peak_resident_mib() { return status_mib("VmHWM"); }
 
+bool reset_peak_resident() {
+    std::ofstream clear("/proc/self/clear_refs");
+    clear << "5";
+    clear.flush();
+    return bool(clear);
+}
+
 double heap_mib() {
 #ifdef TESSERA_SANITIZER_ALLOCATOR
     return double(__sanitizer_get_current_allocated_bytes()) / (1024.0 * 1024.0);

@@ -16,6 +16,11 @@ namespace tessera::cli {
 double resident_mib();
 double peak_resident_mib();
 
+// Starts a new peak: VmHWM drops to the current VmRSS (Linux's /proc/self/clear_refs "5"), so
+// that peak_resident_mib() afterwards is the peak of what follows. False where the kernel does
+// not allow it: the peak then stays the process's since it started.
+bool reset_peak_resident();
+
 // Live heap allocations in MiB.
 double heap_mib();
 
