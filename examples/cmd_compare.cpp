@@ -27,6 +27,7 @@
 #include "examples/machine.h"
 #include "examples/model_view.h"
 #include "examples/resident_memory.h"
+#include "examples/shadow_map_flags.h"
 #include "raster/asset/framing.h"
 #include "raster/asset/light_rig.h"
 #include "raster/core/atomic_file.h"
@@ -48,6 +49,7 @@ struct Options {
     std::string sizes = "1280x720", threads = "0", sweep;
     int repeat = 5;
     std::string json, plots;
+    ShadowMapFlags map_flags;  // over every light's shadow-map settings
 };
 
 struct Size {
@@ -94,6 +96,7 @@ Content load_content(const Options& o, Size first) {
         ModelView view = load_model_view(o.mesh, o.camera, first.width, first.height);
         content.scene = render::still_scene(std::move(view.scene));
         content.default_rig = true;
+        o.map_flags.apply(content.scene.scene.lights);
         return content;
     }
     std::error_code ec;  // the running binary: scene folders next to an installed tessera
@@ -103,6 +106,7 @@ Content load_content(const Options& o, Size first) {
     std::vector<std::string> warnings;
     const scene_file::SceneSpec spec = scene_file::load_scene_file(file, warnings);
     content.scene = scene_file::build_scene(spec, &warnings);
+    o.map_flags.apply(content.scene.scene.lights);
     for (const std::string& w : warnings) std::fprintf(stderr, "tessera: warning: %s\n", w.c_str());
     if (!spec.camera_given)
         std::fprintf(stderr, "tessera: camera (framed): %s\n", asset::camera_flags(content.scene.camera.camera).c_str());
@@ -194,7 +198,8 @@ std::optional<Box> vertex_bounds(const Mesh& mesh) {
 }
 
 // --sweep: each count of copies in a grid (scene/instance_grid.h), framed as a whole.
-std::vector<SweepPoint> sweep(Content& content, const std::vector<int>& counts, Size size, int threads, int repeat) {
+std::vector<SweepPoint> sweep(Content& content, const std::vector<int>& counts, Size size, int threads, int repeat,
+                              const ShadowMapFlags& map_flags) {
     const auto cap = limit_threads(threads);
     const float aspect = float(size.width) / float(size.height);
     content.scene.set_time(content.time, aspect);  // the copies are of the scene at this time
@@ -206,7 +211,10 @@ std::vector<SweepPoint> sweep(Content& content, const std::vector<int>& counts, 
         const auto [lower, upper] = grid.bounds(box->lower, box->upper);
         scene::Scene copied = scene::instance_grid(content.scene.scene, grid);
         copied.camera = asset::frame_box(lower, upper, aspect, content.scene.scene.camera.fovy_deg);
-        if (content.default_rig) copied.lights = asset::default_light_rig(copied.camera, lower, upper);
+        if (content.default_rig) {
+            copied.lights = asset::default_light_rig(copied.camera, lower, upper);
+            map_flags.apply(copied.lights);
+        }
         render::AnimatedScene still = render::still_scene(std::move(copied));
         SweepPoint p;
         p.copies = copies;
@@ -274,7 +282,7 @@ int run(const Options& o) {
     for (const Size size : sizes)
         for (const int t : threads) report.configs.push_back(measure(content, size, t, o.repeat));
     if (!copies.empty()) {
-        report.sweep = sweep(content, copies, sizes.front(), threads.front(), o.repeat);
+        report.sweep = sweep(content, copies, sizes.front(), threads.front(), o.repeat, o.map_flags);
         find_crossovers(report);
     }
     report.command = command_line();
@@ -307,6 +315,7 @@ Run define_compare(CLI::App& root) {
     cmd->add_option("--sweep", o.sweep,
                     "copies N1,N2,... of the content in a grid, framed as a whole: time against triangle count and "
                     "the crossover (at the first size and thread count)");
+    add_shadow_map_options(*cmd, o.map_flags);
     cmd->add_option("--json", o.json, "write the figures, machine, command and date as JSON");
     cmd->add_option("--plots", o.plots, "write PNG plots into this folder (needs gnuplot)");
     return [options] { return run(*options); };

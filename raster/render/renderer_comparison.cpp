@@ -16,7 +16,8 @@ StillFrame still_frame(AnimatedScene& scene, float time, int width, int height) 
     frame.baked = scene::bake(scene.scene);
     embree::reserve_ray_padding(frame.baked.mesh);
     frame.camera = scene.scene.camera;
-    for (const scene::Light& light : scene.scene.lights) frame.light_targets.push_back(shadow_target(light));
+    frame.lights = scene.scene.lights;
+    for (const scene::Light& light : frame.lights) frame.light_targets.push_back(shadow_target(light));
     return frame;
 }
 
@@ -40,7 +41,10 @@ ShadowMethods compare_shadow_methods(pipeline::Rasterizer& rasterizer, const emb
     auto t0 = Clock::now();
     std::vector<shadow::ShadowMap> maps;
     maps.reserve(lights.size());
-    for (const glm::vec3& light : lights) maps.emplace_back(rasterizer, mesh, light);
+    for (size_t l = 0; l < lights.size(); ++l) {
+        const shadow::ShadowLight light(lights[l], frame.lights[l].position.w == 0.0f);  // w = 0: directional
+        maps.emplace_back(rasterizer, mesh, light, frame.camera, frame.lights[l].shadow_map);
+    }
     const shadow::LightMask by_maps = shadow::compute_light_mask(visibility, mesh, vp, lights, shadow::shadow_map_test(maps));
     out.maps_ms = ms_since(t0);
 

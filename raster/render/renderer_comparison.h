@@ -4,7 +4,8 @@
 // - visibility agreement: the rasterizer's and Embree's triangle ids, pixel for pixel (they
 //   differ only where an edge passes exactly through a pixel centre and a tie is broken
 //   differently, or where the fixed-point snap moves an edge past a centre);
-// - shadows: shadow maps (rendered by the rasterizer from each light, then looked up) against
+// - shadows: shadow maps (rendered by the rasterizer from each light with its own settings,
+//   cascades fitted to the camera, as the frame renderer renders them, then looked up) against
 //   Embree shadow rays, both over the same visible points, timed and compared as light masks
 //   (shadow/mask_compare.h), overall and away from grazing light;
 // - the BVH: a full build (the static quality a still frame uses) against a refit (what an
@@ -25,11 +26,12 @@
 
 namespace tessera::render {
 
-// The scene at one time as one world-space mesh, its camera and the points its lights shine
-// from (as the frame renderer aims shadow rays: shadow_target()).
+// The scene at one time as one world-space mesh, its camera, its lights and the points they
+// shine from (as the frame renderer aims shadow rays: shadow_target()).
 struct StillFrame {
     scene::BakedScene baked;
     Camera camera;
+    std::vector<scene::Light> lights;
     std::vector<glm::vec3> light_targets;
 };
 StillFrame still_frame(AnimatedScene& scene, float time, int width, int height);
@@ -43,7 +45,7 @@ struct IdAgreement {
 IdAgreement compare_triangle_ids(const VisibilityBuffer& a, const VisibilityBuffer& b);
 
 struct ShadowMethods {
-    double maps_ms = 0;  // shadow maps rendered from every light, then every visible point looked up
+    double maps_ms = 0;  // every light's shadow maps rendered, then every visible point looked up
     double rays_ms = 0;  // an Embree occlusion ray from every visible point to every light
     shadow::MaskAgreement all;          // over every covered pixel
     shadow::MaskAgreement non_grazing;  // leaving out points a light meets at cos < kGrazingCosine
