@@ -125,7 +125,7 @@ std::vector<std::string> write_plots(const fs::path& dir, const ComparisonReport
     std::vector<Plot> plots;
     if (!r.sweep.empty()) {
         Plot p{"time_vs_triangles", "triangles (copies of the content)", "ms (median)", true, true, {}, {}};
-        Series raster_frame{"raster frame", {}}, rays_frame{"raytrace frame (BVH rebuilt)", {}},
+        Series raster_frame{"raster frame", {}}, rays_frame{"raytrace frame", {}},
             raster_vis{"raster visibility", {}}, rays_vis{"primary rays", {}};
         for (const SweepPoint& s : r.sweep) {
             const double t = double(s.triangles);
@@ -156,7 +156,7 @@ std::vector<std::string> write_plots(const fs::path& dir, const ComparisonReport
     Plot threads{"time_vs_threads", "threads (" + std::to_string(first.width) + "x" + std::to_string(first.height) + ")",
                  "ms (median)", false, false, {}, {}};
     for (Plot* p : {&resolution, &threads})
-        p->series = {{"raster frame", {}}, {"raytrace frame (BVH rebuilt)", {}}, {"raster visibility", {}}, {"primary rays", {}}};
+        p->series = {{"raster frame", {}}, {"raytrace frame", {}}, {"raster visibility", {}}, {"primary rays", {}}};
     const auto add = [](Plot& p, double x, const ConfigFigures& c) {
         p.series[0].points.push_back({x, positive(c.raster.frame_ms)});
         p.series[1].points.push_back({x, positive(c.raytrace.frame_ms)});

@@ -69,7 +69,7 @@ void print_report(const ComparisonReport& r) {
         };
         row("visibility ms", c.raster.visibility_ms, c.raytrace.visibility_ms, "   (tile rasterizer | primary rays)");
         row("shading ms", c.raster.shading_ms, c.raytrace.shading_ms, "");
-        std::printf("  %-28s %10s %10.3f   (rebuilt every frame)\n", "bvh ms", "-", ms3(c.raytrace.bvh_ms));
+        std::printf("  %-28s %10s %10.3f   (per frame: objects that moved)\n", "bvh ms", "-", ms3(c.raytrace.bvh_ms));
         row("frame ms", c.raster.frame_ms, c.raytrace.frame_ms, "");
         if (c.shadows)
             row("shadows ms", c.shadows->maps_ms, c.shadows->rays_ms, "   (shadow maps | shadow rays)");

@@ -16,7 +16,9 @@ namespace tessera::cli {
 struct RendererFigures {
     double visibility_ms = 0;  // tile rasterizer stages | Embree primary rays
     double shading_ms = 0;     // the tile passes after visibility (shading, blending, compute passes)
-    double bvh_ms = 0;         // the BVH the frame renderer rebuilds every frame (raytrace only)
+    // The BVH work of a frame after the first (raytrace only): the frame renderer keeps the
+    // BVHs of objects that did not move, so for still content this is the check that nothing did.
+    double bvh_ms = 0;
     double frame_ms = 0;       // the whole frame, bake included
     double peak_resident_mib = 0;
 };
