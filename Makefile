@@ -15,7 +15,7 @@ FUZZ_SEED ?= 0
 # The tsan preset builds only these tests (TESSERA_THREAD_TESTS_ONLY) and the layers they use.
 TSAN_TESTS ?= FrameWriter|FrameStream
 
-.PHONY: all deps build test demo bench bench-report peer sanitize tsan fuzz fuzz-run clean
+.PHONY: all deps build test demo bench bench-report peer same-bytes sanitize tsan fuzz fuzz-run clean
 
 all: build
 
@@ -43,6 +43,14 @@ bench-report:
 # tessera vs Mesa llvmpipe on the same workloads (PEER_ARGS, e.g. --workload sphere-1m --cpu).
 peer: build
 	bash scripts/peer.sh $(PEER_ARGS)
+
+# The release build (this machine's SIMD width) and the portable one (x86-64-v3, AVX2) write
+# the same bytes: every example scene, the raster command, the generators. Not in CI (a second
+# full build does not fit its budget).
+same-bytes: build
+	cmake --preset portable
+	cmake --build --preset portable -j $(JOBS) --target tessera
+	bash tests/builds_same_bytes.sh build/bin/tessera build-portable/bin/tessera
 
 sanitize: deps
 	cmake --preset sanitize

@@ -1,0 +1,59 @@
+#!/usr/bin/env bash
+# Same bytes between builds for different SIMD widths (`make same-bytes`; not in CI): two
+# `tessera` binaries, e.g. the release build (-march=native: AVX-512 where the CPU has it) and
+# the portable one (x86-64-v3: AVX2), must write identical files: a mid-animation frame of
+# every example scene in every shadow mode and with both renderers, in PNG and EXR, the raster
+# command's colour, ids and depth, and the generators' images.
+#   bash tests/builds_same_bytes.sh build/bin/tessera build-portable/bin/tessera
+set -u
+first=$1 second=$2
+fail() { echo "FAIL: $*"; exit 1; }
+dir=$(mktemp -d)
+trap 'rm -rf "$dir"' EXIT
+scenes=$(cd "$(dirname "$0")/../examples/scenes" && pwd)
+"$first" info | grep -i 'simd\|built for' | head -2 | sed 's/^/first:  /'
+"$second" info | grep -i 'simd\|built for' | head -2 | sed 's/^/second: /'
+
+# both NAME EXT ARGS...: runs `tessera ARGS` with each binary (@OUT@ is the output stem) and
+# compares the NAME.EXT files they write.
+count=0
+both() {
+    local name=$1 ext=$2
+    shift 2
+    "$first" "${@//@OUT@/$dir/1_$name}" >/dev/null || fail "$name: the first build exited $?"
+    "$second" "${@//@OUT@/$dir/2_$name}" >/dev/null || fail "$name: the second build exited $?"
+    for f in "$dir/1_$name".* "$dir/1_${name}"_[0-9]*; do
+        [ -e "$f" ] || continue
+        cmp -s "$f" "$dir/2_${f#"$dir/1_"}" || fail "$(basename "$f"): the builds differ"
+        count=$((count + 1))
+    done
+}
+
+for scene in "$scenes"/*.json; do
+    name=$(basename "$scene" .json)
+    size=96x54
+    [ "$name" = stress ] && size=64x36
+    for shadows in none map rays; do
+        both "${name}_raster_$shadows" png render --scene "$scene" --size $size --frames 7:8 --shadows $shadows \
+            --quiet --out "@OUT@_####.png"
+    done
+    both "${name}_raster" exr render --scene "$scene" --size $size --frames 7:7 --quiet --out "@OUT@.exr"
+    [ "$name" = stress ] ||
+        both "${name}_raytrace" png render --scene "$scene" --size $size --frames 7:7 --renderer raytrace --quiet \
+            --out "@OUT@.png"
+done
+"$first" testmesh --kind sphere --count 5000 --out "$dir/s.obj" --camera-out "$dir/s.cam" >/dev/null || fail "testmesh exited $?"
+for shade in id depth normal phong; do
+    for renderer in raster raytrace; do
+        both "raster_${shade}_$renderer" png raster --mesh "$dir/s.obj" --camera "$dir/s.cam" --size 160x90 \
+            --shade $shade --renderer $renderer --out-color "@OUT@.png" --out-id "@OUT@.id" --out-depth "@OUT@.pfm"
+    done
+done
+both heightfield exr generate heightfield --size 128x128 --relief warped --erode 20 --out "@OUT@.exr"
+both rd png generate rd --preset spots --size 96x96 --steps 500 --out "@OUT@.png"
+"$first" generate heightfield --size 96x96 --relief dunes --out "$dir/h.exr" >/dev/null || fail "heightfield exited $?"
+both normalmap png generate normalmap --in "$dir/h.exr" --out "@OUT@.png"
+for scene in terrain metaballs sine-noise noise-volume gradient-noise; do
+    both "march_$scene" png march --scene $scene --size 96x54 -o "@OUT@.png"
+done
+echo "builds_same_bytes: ok ($count files identical)"
