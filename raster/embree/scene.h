@@ -21,11 +21,11 @@
 // compares each part of the next frame's mesh with the copy Embree holds and rebuilds only
 // the parts that differ; a part that did not move keeps its BVH, so the ground of an animation
 // is built once per run, not once per frame. A still part (MeshPart::still) gets a MEDIUM
-// quality BVH (SAH: dearer to build, cheaper to trace, and built once), the others LOW. A part's BVH depends only on the part's own
-// triangles, never on the frames before (no refit): a frame's bytes are the same whichever
-// frames were rendered before it, as shards and --resume require. Parts mode copies the
-// positions and indices (local to the part) into Embree's buffers, since the frame's mesh is
-// gone when the next one is compared with them.
+// quality BVH (SAH: dearer to build, cheaper to trace, and built once), the others LOW. A
+// part's BVH depends only on the part's own triangles, never on the frames before (no
+// refit): a frame's bytes are the same whichever frames were rendered before it, as shards
+// and --resume require. Parts mode copies the positions and indices (local to the part) into
+// Embree's buffers, since the frame's mesh is gone when the next one is compared with them.
 //
 // Triangle ids: a hit's triangle in the mesh is triangle(geomID, primID), the part's first
 // triangle plus the primitive id (just primID for a scene of one part).
@@ -77,8 +77,9 @@ public:
     // if Embree fails.
     RayScene(const RayDevice& device, const Mesh& mesh, BvhUpdate update = BvhUpdate::none);
     // One geometry per part of `mesh` (every part's indices inside its vertex range; parts
-    // need not cover the mesh), LOW quality, copied into Embree's buffers: the scene keeps a
-    // pointer to `mesh` until the next update(next, parts). Throws as above.
+    // need not cover the mesh), MEDIUM quality for still parts and LOW for the others, copied
+    // into Embree's buffers: the scene keeps a pointer to `mesh` until the next
+    // update(next, parts). Throws as above.
     RayScene(const RayDevice& device, const Mesh& mesh, std::span<const MeshPart> parts);
     ~RayScene();
     RayScene(const RayScene&) = delete;
