@@ -1,6 +1,5 @@
 #include "raster/march/fog_pass.h"
 
-#include <algorithm>
 #include <cmath>
 
 namespace tessera::march {
@@ -18,8 +17,7 @@ constexpr float kFarFadeStart = 0.75f;  // of the far distance
 float far_visibility(float distance, float far_distance) {
     if (std::isinf(distance)) return 1.0f;
     if (!(distance < far_distance)) return 0.0f;
-    const float x = std::clamp((distance / far_distance - kFarFadeStart) / (1.0f - kFarFadeStart), 0.0f, 1.0f);
-    return 1.0f - x * x * (3.0f - 2.0f * x);
+    return 1.0f - glm::smoothstep(kFarFadeStart, 1.0f, distance / far_distance);
 }
 
 }  // namespace

@@ -1,6 +1,5 @@
 #include "raster/shade/background_radiance.h"
 
-#include <algorithm>
 #include <cmath>
 
 #include "raster/texture/sampler.h"
@@ -15,16 +14,11 @@ namespace {
 constexpr float kHorizonBand = 0.1f;  // sine of the elevation, about 5.7 degrees
 constexpr float kGroundBand = 0.25f;  // below the horizon, down to the ground colour
 
-float smoothstep01(float x) {
-    x = std::clamp(x, 0.0f, 1.0f);
-    return x * x * (3.0f - 2.0f * x);
-}
-
 glm::vec3 sky_radiance(const scene::Sky& sky, glm::vec3 d) {
     const float up = d.y;
     glm::vec3 c = up >= 0.0f
-                      ? glm::mix(sky.horizon, sky.zenith, std::sqrt(up) * smoothstep01(up / kHorizonBand))
-                      : glm::mix(sky.horizon, sky.ground, smoothstep01(-up / kGroundBand));
+                      ? glm::mix(sky.horizon, sky.zenith, std::sqrt(up) * glm::smoothstep(0.0f, kHorizonBand, up))
+                      : glm::mix(sky.horizon, sky.ground, glm::smoothstep(0.0f, kGroundBand, -up));
     const float len = glm::length(sky.sun_direction);
     if (len > 0.0f) {
         const float cosine = glm::dot(d, sky.sun_direction / len);
