@@ -104,7 +104,7 @@ Run define_march(CLI::App& root) {
         s.fog.colour = parse_rgb(o->fog_colour, "--fog-colour");
         s.fog.falloff = o->fog_falloff;
         s.fog.base_height = o->fog_base;
-        if (!io::image_format_supported(o->output))
+        if (!output::frame_format_supported(o->output))
             throw UsageError("--output: no image writer for '" + o->output + "'");
         check_writable(o->output);  // before the render, not after it
 

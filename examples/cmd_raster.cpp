@@ -60,7 +60,7 @@ void print_stats(const pipeline::RasterStats& s, double shade_ms) {
 int run_material(const Options& o, int width, int height) {
     if (!o.out_id.empty() || !o.out_depth.empty() || o.cull != "none" || o.tile)
         throw UsageError("--out-id, --out-depth, --cull and --tile go with --shade id|depth|normal|phong");
-    if (!o.out_color.empty() && !io::image_format_supported(o.out_color))
+    if (!o.out_color.empty() && !output::frame_format_supported(o.out_color))
         throw UsageError("--out-color: no image writer for '" + o.out_color + "'");
     if (!o.out_color.empty()) check_writable(o.out_color);  // before the work
     const pipeline::Viewport viewport(width, height);  // checks the size limits

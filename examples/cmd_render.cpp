@@ -198,7 +198,7 @@ RenderPlan plan_render(const Options& o, const LoadedScene& scene) {
                          " frames would overwrite it");
     if (pattern.path_for(plan.range.first).filename().empty() || pattern.text().back() == '/')
         throw UsageError("--out '" + pattern.text() + "': no file name (use e.g. DIR/frame_####.png)");
-    if (!io::image_format_supported(pattern.path_for(plan.range.first)))
+    if (!output::frame_format_supported(pattern.path_for(plan.range.first)))
         throw UsageError("--out '" + pattern.text() + "': no image format for that extension (use .png, .exr or .tif)");
     if (o.trace) {  // checked now, not after the frames are rendered
         if (o.trace->empty()) throw UsageError("--trace: expected a file name, got ''");

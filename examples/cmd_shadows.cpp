@@ -145,7 +145,7 @@ int run_scene(const Options& o) {
 
 int run(const Options& o) {
     if (!o.diff.empty()) {  // checked before the work, not after it
-        if (!io::image_format_supported(o.diff)) throw UsageError("--diff: no image writer for '" + o.diff + "'");
+        if (!output::frame_format_supported(o.diff)) throw UsageError("--diff: no image writer for '" + o.diff + "'");
         check_writable(o.diff);
     }
     if (!o.scene.empty()) return run_scene(o);

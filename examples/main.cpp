@@ -1,12 +1,12 @@
 // The `tessera` command: parses the command line with CLI11, runs the chosen subcommand, and
 // turns every failure into one line on stderr and an exit code (see command.h).
-#include <OpenImageIO/oiioversion.h>
 #include <embree3/rtcore_config.h>
 #include <oneapi/tbb/version.h>
 
 #include <algorithm>
 #include <cstdio>
 #include <exception>
+#include <functional>
 #include <map>
 #include <new>
 
@@ -14,13 +14,18 @@
 #include "examples/signals.h"
 #include "raster/core/error.h"
 #include "raster/io/date_stamp.h"
+#include "raster/io/image_codec.h"
 
 namespace {
 
 std::string version_text() {
     std::string text = "tessera " TESSERA_VERSION "\n";
-    text += "  embree " RTC_VERSION_STRING ", oneTBB " TBB_VERSION_STRING
-            ", OpenImageIO " OIIO_VERSION_STRING "\n";
+    text += "  embree " RTC_VERSION_STRING ", oneTBB " TBB_VERSION_STRING ", OpenImageIO ";
+    try {  // the image codec module, loaded here as on the first image (io/image_codec.h)
+        text += tessera::io::image_codec().library_version() + "\n";
+    } catch (const tessera::Error& e) {
+        text += std::string("unavailable\n  ") + e.what() + "\n";
+    }
     text += "  built for: ";
 #if defined(__AVX512F__)
     text += "AVX-512";
@@ -63,7 +68,7 @@ int main(int argc, char** argv) {
     CLI::App app{"tessera: a tiled SIMD CPU rasterizer, an Embree ray tracer and procedural "
                  "generators, rendering the same scenes",
                  "tessera"};
-    app.set_version_flag("--version", version_text());
+    app.set_version_flag("--version", std::function<std::string()>(version_text));  // only when asked
     app.require_subcommand(1);
     app.footer("Run 'tessera COMMAND --help' for a command's options.");
 

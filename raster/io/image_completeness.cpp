@@ -1,6 +1,5 @@
 #include "raster/io/image_completeness.h"
 
-#include <OpenImageIO/imageio.h>
 #include <fcntl.h>
 #include <sys/stat.h>
 #include <unistd.h>
@@ -12,6 +11,8 @@
 #include <cstring>
 #include <string>
 #include <vector>
+
+#include "raster/io/image_codec.h"
 
 namespace tessera::io {
 namespace fs = std::filesystem;
@@ -296,34 +297,6 @@ Exr exr_completeness(const FileReader& file, int width, int height) {
     return end == file.size() ? Exr::checked : incomplete;
 }
 
-// Any other format (OpenEXR): OpenImageIO decodes every pixel, a band of rows at a time, so a
-// missing or damaged chunk is an error (OpenEXR's zip chunks carry zlib's Adler-32).
-bool decodes_fully(const fs::path& path, int width, int height) {
-    auto in = OIIO::ImageInput::open(path.string());
-    if (!in) {
-        (void)OIIO::geterror();
-        return false;
-    }
-    const OIIO::ImageSpec& spec = in->spec();
-    if (spec.width != width || spec.height != height || spec.nchannels <= 0) return false;
-    // About 64 rows at a time; whole tile rows for a tiled file (read_tiles needs them).
-    const int band = spec.tile_height > 0 ? spec.tile_height * std::max(1, 64 / spec.tile_height) : 64;
-    std::vector<float> pixels(size_t(spec.width) * size_t(band) * size_t(spec.nchannels));
-    for (int y = 0; y < spec.height; y += band) {
-        const int end = std::min(spec.height, y + band);
-        const bool ok = spec.tile_width > 0
-                            ? in->read_tiles(0, 0, spec.x, spec.x + spec.width, spec.y + y, spec.y + end, 0, 1, 0,
-                                             spec.nchannels, OIIO::TypeDesc::FLOAT, pixels.data())
-                            : in->read_scanlines(0, 0, spec.y + y, spec.y + end, 0, 0, spec.nchannels,
-                                                 OIIO::TypeDesc::FLOAT, pixels.data());
-        if (!ok) {
-            (void)in->geterror();
-            return false;
-        }
-    }
-    return true;
-}
-
 }  // namespace
 
 bool image_is_complete(const fs::path& path, int width, int height) {
@@ -341,7 +314,8 @@ bool image_is_complete(const fs::path& path, int width, int height) {
     if (magic[0] == 0x76 && magic[1] == 0x2f && magic[2] == 0x31 && magic[3] == 0x01 &&
         exr_completeness(file, width, height) == Exr::incomplete)
         return false;
-    return decodes_fully(path, width, height);
+    // Any other format (OpenEXR after the checks above): every pixel decoded, a band at a time.
+    return image_codec().decodes_fully(path.string(), width, height);
 }
 
 

@@ -1,77 +1,50 @@
 #include "raster/io/image_stream.h"
 
-#include <OpenImageIO/filesystem.h>
-#include <OpenImageIO/imageio.h>
-
-#include <algorithm>
-#include <mutex>
 #include <string>
 
 #include "raster/core/atomic_file.h"
 #include "raster/core/error.h"
 #include "raster/io/date_stamp.h"
-#include "raster/io/oiio_pixel_type.h"
+#include "raster/io/image_codec.h"
 
 namespace tessera::io {
 namespace fs = std::filesystem;
 
-namespace {
-
-// OpenImageIO's encoders write through this proxy into the AtomicFile. A failed write is
-// recorded and reported after close(): an exception must not cross the C libraries (libpng,
-// libtiff) underneath the encoders.
-class CheckedFileProxy final : public OIIO::Filesystem::IOProxy {
-public:
-    explicit CheckedFileProxy(AtomicFile& file) : IOProxy(file.path().string(), Write), file_(file) {}
-    const char* proxytype() const override { return "tessera-atomic-file"; }
-    size_t write(const void* buf, size_t size) override {
-        const size_t done = pwrite(buf, size, m_pos);
-        m_pos += int64_t(done);
-        return done;
-    }
-    size_t pwrite(const void* buf, size_t size, int64_t offset) override {
-        std::lock_guard lock(mutex_);
-        if (!failure_.empty() || offset < 0) return 0;
-        try {
-            file_.write_at(uint64_t(offset), std::span(static_cast<const std::byte*>(buf), size));
-        } catch (const Error& e) {
-            failure_ = e.what();
-            return 0;
-        }
-        size_ = std::max(size_, size_t(offset) + size);
-        return size;
-    }
-    size_t size() const override { return size_; }
-    const std::string& failure() const { return failure_; }
-
-private:
-    AtomicFile& file_;
-    std::mutex mutex_;
-    size_t size_ = 0;
-    std::string failure_;  // AtomicFile's message, which names the file
-};
-
-}  // namespace
-
 struct ImageStream::Impl {
     fs::path path;
     AtomicFile file;
-    CheckedFileProxy proxy;
-    std::unique_ptr<OIIO::ImageOutput> out;
+    std::string file_failure;  // AtomicFile's message (it names the file), from the encoder's writes
+    CodecStream* stream = nullptr;
     int width, height, channels;
     PixelType type;
     bool tiled = false;
     int next_row = 0;
 
     Impl(const fs::path& p, int w, int h, int c, PixelType t)
-        : path(p), file(p), proxy(file), width(w), height(h), channels(c), type(t) {}
-
-    [[noreturn]] void fail(const std::string& why) const {
-        throw Error(!proxy.failure().empty() ? proxy.failure() : "cannot write '" + path.string() + "': " + why);
+        : path(p), file(p), width(w), height(h), channels(c), type(t) {}
+    ~Impl() {
+        if (stream) image_codec().stream_free(stream);
     }
-    std::string oiio_error() const {
-        const std::string why = out ? out->geterror() : OIIO::geterror();
-        return why.empty() ? "encoding failed" : why;
+
+    // The encoder's writes land in the AtomicFile. A failure is kept and reported after the
+    // codec call returns: an exception must not cross the codec and the C libraries under it.
+    static bool write_at(void* context, uint64_t offset, const void* bytes, size_t size) {
+        Impl& im = *static_cast<Impl*>(context);
+        try {
+            im.file.write_at(offset, std::span(static_cast<const std::byte*>(bytes), size));
+            return true;
+        } catch (const Error& e) {
+            im.file_failure = e.what();
+            return false;
+        }
+    }
+    // After each codec call: the file's own failure first (it says why), then the codec's.
+    void check(const std::string& codec_failure) const {
+        if (!file_failure.empty()) throw Error(file_failure);
+        if (!codec_failure.empty()) throw Error(codec_failure);
+    }
+    [[noreturn]] void fail(const std::string& why) const {
+        throw Error("cannot write '" + path.string() + "': " + why);
     }
 };
 
@@ -80,18 +53,11 @@ ImageStream::ImageStream(const fs::path& path, int width, int height, int channe
         throw Error("cannot write '" + path.string() + "': the image is empty");
     impl_ = std::make_unique<Impl>(path, width, height, channels, type);
     Impl& im = *impl_;
-    im.out = OIIO::ImageOutput::create(path.string(), &im.proxy);
-    if (!im.out) im.fail("no image format for extension '" + path.extension().string() + "' (" + im.oiio_error() + ")");
-    if (!im.out->supports("ioproxy"))
-        im.fail("format '" + std::string(im.out->format_name()) + "' cannot be written through a checked file");
-    OIIO::ImageSpec spec(width, height, channels, oiio_type(type));
-    spec.attribute("DateTime", image_date_time());  // same bytes on every run (date_stamp.h)
-    im.tiled = im.out->supports("tiles");
-    if (im.tiled) spec.tile_width = spec.tile_height = kTileRows;
-    // Classic TIFF addresses 4 GiB; BigTIFF only where it is needed, since older readers lack it.
-    const double bytes = double(width) * height * channels * double(pixel_type_bytes(type));
-    if (bytes > double(uint64_t(1) << 31)) spec.attribute("tiff:bigtiff", 1);
-    if (!im.out->open(path.string(), spec)) im.fail(im.oiio_error());
+    const ImageCodec& codec = image_codec();
+    // Tiled (kTileRows square) where the format has tiles: EXR, TIFF.
+    im.check(codec.stream_open(path.string(), width, height, channels, type, kTileRows, image_date_time(),
+                               CodecSink{&im, &Impl::write_at}, &im.stream));
+    im.tiled = codec.stream_tiled(im.stream);
 }
 
 ImageStream::~ImageStream() = default;
@@ -104,10 +70,7 @@ void ImageStream::write_rows(int y, const ImageView& rows) {
                 " do not continue the image where it stopped (row " + std::to_string(im.next_row) + ")");
     if (im.tiled && y + rows.height < im.height && rows.height % kTileRows != 0)
         im.fail("a band of " + std::to_string(rows.height) + " rows does not end on a tile row");
-    const OIIO::TypeDesc type = oiio_type(rows.type);
-    const bool ok = im.tiled ? im.out->write_tiles(0, im.width, y, y + rows.height, 0, 1, type, rows.pixels)
-                             : im.out->write_scanlines(y, y + rows.height, 0, type, rows.pixels);
-    if (!ok || !im.proxy.failure().empty()) im.fail(im.oiio_error());
+    im.check(image_codec().stream_write(im.stream, y, rows));
     im.next_row = y + rows.height;
 }
 
@@ -115,9 +78,7 @@ void ImageStream::commit() {
     Impl& im = *impl_;
     if (im.next_row != im.height)
         im.fail("only " + std::to_string(im.next_row) + " of " + std::to_string(im.height) + " rows were written");
-    const bool ok = im.out->close();
-    if (!ok || !im.proxy.failure().empty()) im.fail(im.oiio_error());
-    im.out.reset();
+    im.check(image_codec().stream_close(im.stream));
     im.file.commit();
 }
 

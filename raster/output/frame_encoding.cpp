@@ -51,6 +51,10 @@ io::PixelType frame_pixel_type(const std::filesystem::path& path) {
     return io::PixelType::u8;
 }
 
+bool frame_format_supported(const std::filesystem::path& path) {
+    return lower_extension(path) == ".png" || io::image_format_supported(path);
+}
+
 OwnedImage encode_frame(const std::filesystem::path& path, const Frame& frame) {
     // A frame holding NaN or Inf (a value of the scene that overflowed float, or a bug) is never
     // written: an EXR would carry it on into compositing, 8-bit encodings would hide it as

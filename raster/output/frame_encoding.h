@@ -29,6 +29,10 @@ std::vector<uint16_t> encode_srgb16(const Frame& frame);
 // The pixel type `path`'s extension stores (see above).
 io::PixelType frame_pixel_type(const std::filesystem::path& path);
 
+// True when write_frame can write `path`: PNG, which tessera encodes itself (without loading
+// the image codec), or a format OpenImageIO writes.
+bool frame_format_supported(const std::filesystem::path& path);
+
 // The frame encoded as `path`'s extension asks (see above), ready for write_image or for the
 // background FrameWriter (frame_writer.h).
 OwnedImage encode_frame(const std::filesystem::path& path, const Frame& frame);
