@@ -13,6 +13,8 @@
 #include <limits>
 #include <type_traits>
 
+#include <glm/glm.hpp>
+
 #include "raster/simd/lane_math.h"
 #include "seeded_random.h"
 
@@ -237,6 +239,61 @@ TEST(SimdLaneMath, VectorHelpersMatchScalarAndNormalize) {
                 ASSERT_EQ(sn.z, sf.z);
             }
         }
+    }
+}
+
+
+// exp_of and expm1_of (double precision rounded once) against std::exp / std::expm1 in
+// double rounded to float: equal but where the exact value lies within ~1e-13 of a rounding
+// tie (never seen in these samples; a one-unit difference is allowed for it), and the same
+// bits in lanes. The edges: underflow to 0, overflow to infinity, infinities, NaN.
+TEST(SimdLaneMath, ExpOfIsTheRoundedExponential) {
+    Rng rng(2121);
+    int differing = 0;
+    for (int round = 0; round < kRounds; ++round) {
+        Lanes x;
+        for (float& v : x.v) v = float(rng.unit() * 220.0 - 180.0);  // [-180, 40]
+        if (round < 2)
+            for (int i = 0; i < kLanes; ++i) {
+                const float edges[] = {0.0f, -0.0f, 1e-30f, -1e-30f, 88.72f, 88.73f, 100.5f, -103.9f, -150.5f,
+                                       std::numeric_limits<float>::infinity(), -std::numeric_limits<float>::infinity(),
+                                       std::numeric_limits<float>::quiet_NaN(), 1e-4f, -1e-4f, 0.5f, -87.3f};
+                x.v[i] = edges[(i + round * kLanes) % std::size(edges)];
+            }
+        const Lanes e = expect_lanes_match_scalar(x, [](auto v) { return exp_of(v); }, "exp_of");
+        const Lanes m = expect_lanes_match_scalar(x, [](auto v) { return expm1_of(v); }, "expm1_of");
+        for (int i = 0; i < kLanes; ++i) {
+            const float v = x.v[i];
+            if (std::isnan(v)) {
+                EXPECT_TRUE(std::isnan(e.v[i]) && std::isnan(m.v[i]));
+                continue;
+            }
+            const float want = float(std::exp(double(v)));
+            const float got = e.v[i];
+            if (got != want) {
+                ++differing;
+                ASSERT_EQ(std::nextafter(got, want), want) << "exp_of(" << v << ") = " << got << ", want " << want;
+            }
+            if (std::fabs(v) >= 1e-4f) {
+                const float want_m1 = float(std::expm1(double(v)));
+                ASSERT_TRUE(m.v[i] == want_m1 || std::nextafter(m.v[i], want_m1) == want_m1)
+                    << "expm1_of(" << v << ") = " << m.v[i] << ", want " << want_m1;
+            }
+        }
+    }
+    EXPECT_LE(differing, 2);
+}
+
+// smoothstep: glm's value for float, and the same bits in lanes.
+TEST(SimdLaneMath, SmoothstepIsGlmsInLanes) {
+    Rng rng(77);
+    for (int round = 0; round < kRounds / 4; ++round) {
+        Lanes x;
+        for (float& v : x.v) v = float(rng.unit() * 1.6 - 0.3);
+        x.v[0] = round == 0 ? 0.75f : round == 1 ? 1.0f : round == 2 ? -0.0f : x.v[0];
+        const Lanes s = expect_lanes_match_scalar(x, [](auto v) { return smoothstep(0.75f, 1.0f, v); }, "smoothstep");
+        for (int i = 0; i < kLanes; ++i)
+            ASSERT_EQ(std::bit_cast<uint32_t>(s.v[i]), std::bit_cast<uint32_t>(glm::smoothstep(0.75f, 1.0f, x.v[i])));
     }
 }
 

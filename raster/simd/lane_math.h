@@ -25,6 +25,8 @@ inline bool both(bool a, bool b) { return a && b; }
 inline bool either(bool a, bool b) { return a || b; }
 inline vmask both(vmask a, vmask b) { return a & b; }
 inline vmask either(vmask a, vmask b) { return a | b; }
+inline bool any_lane(bool m) { return m; }
+inline bool any_lane(vmask m) { return any(m); }
 
 // x * 2^e for a normal x > 0 (x >= FLT_MIN), split into e = floor(log2 x) and a mantissa in
 // [1, 2). A denormal x splits differently per back end (AVX-512's getexp/getmant normalise
@@ -122,6 +124,70 @@ F pow01(F x, F y) {
     const F safe = max(x, F(1e-30f));
     const F r = exp2_nonpositive(y * log2_positive(safe));
     return select(y <= F(0.0f), F(1.0f), select(x <= F(0.0f), F(0.0f), r));
+}
+
+// glm::smoothstep(edge0, edge1, x) with glm's operations in glm's order (its clamp is
+// min(max(t, 0), 1) with glm's comparisons), so the float form is the value glm gives.
+template <class F>
+F smoothstep(float edge0, float edge1, F x) {
+    F t = (x - F(edge0)) / F(edge1 - edge0);
+    t = select(t < F(0.0f), F(0.0f), t);
+    t = select(F(1.0f) < t, F(1.0f), t);
+    return t * t * (F(3.0f) - F(2.0f) * t);
+}
+
+// e^x rounded once to float from a double-precision evaluation: x = n ln 2 + r, |r| <= ln 2 / 2
+// (n rounded to nearest by the 1.5 * 2^52 shifter, which also leaves n in the low bits), e^r
+// by its Taylor series to r^12 (truncation < 2e-16 relative), times 2^n made in the exponent
+// field. The double is within about 1e-13 (relative) of e^x, so the float is the correctly
+// rounded e^x except within that distance of a rounding tie. Every operation is IEEE double
+// and branch-free, so a loop of it over lanes (which the compiler vectorises, four or eight
+// doubles per instruction) gives the one-value call's bits at any lane width.
+// For x in [-150, 100] or NaN (exp_of clamps first).
+inline double exp_double_clamped(double x) {
+    constexpr double kShifter = 6755399441055744.0;  // 1.5 * 2^52
+    const double shifted = x * 1.4426950408889634 + kShifter;
+    const double n = shifted - kShifter;
+    const double r = (x - n * 0.6931471805599453) - n * 2.3190468138462996e-17;  // ln 2 in two parts
+    double p = 1.0 / 479001600.0;
+    p = p * r + 1.0 / 39916800.0;
+    p = p * r + 1.0 / 3628800.0;
+    p = p * r + 1.0 / 362880.0;
+    p = p * r + 1.0 / 40320.0;
+    p = p * r + 1.0 / 5040.0;
+    p = p * r + 1.0 / 720.0;
+    p = p * r + 1.0 / 120.0;
+    p = p * r + 1.0 / 24.0;
+    p = p * r + 1.0 / 6.0;
+    p = p * r + 0.5;
+    p = p * r + 1.0;
+    p = p * r + 1.0;
+    const uint64_t n_bits = std::bit_cast<uint64_t>(shifted) - std::bit_cast<uint64_t>(kShifter);
+    return p * std::bit_cast<double>((n_bits + 1023u) << 52);
+}
+
+// e^-150 rounds to 0 and e^100 to infinity in float, as expf does; NaN stays NaN (the
+// comparisons keep their second operand for it).
+template <class F>
+F exp_argument(F x) {
+    return min(F(100.0f), max(F(-150.0f), x));
+}
+
+// e^x, and e^x - 1 for |x| >= 1e-4 (callers take a series below: the subtraction in double
+// loses at most 14 of its 53 bits there, before the one rounding to float).
+inline float exp_of(float x) { return float(exp_double_clamped(double(exp_argument(x)))); }
+inline float expm1_of(float x) { return float(exp_double_clamped(double(exp_argument(x))) - 1.0); }
+inline vfloat exp_of(vfloat x) {
+    alignas(64) float lanes[kLanes];
+    exp_argument(x).store(lanes);
+    for (float& l : lanes) l = float(exp_double_clamped(double(l)));
+    return vfloat::load(lanes);
+}
+inline vfloat expm1_of(vfloat x) {
+    alignas(64) float lanes[kLanes];
+    exp_argument(x).store(lanes);
+    for (float& l : lanes) l = float(exp_double_clamped(double(l)) - 1.0);
+    return vfloat::load(lanes);
 }
 
 template <class F>
