@@ -16,7 +16,10 @@ public:
     BackgroundPass(const RayGenerator& rays, const scene::Background& background)
         : rays_(rays), background_(background) {}
 
+    // kLanes pixels of a row at a time (the lane forms of the rays and the radiance).
     void run(const Tile& target) const;
+    // One pixel at a time through the one-ray forms: what run() is tested against.
+    void run_reference(const Tile& target) const;
 
 private:
     const RayGenerator& rays_;

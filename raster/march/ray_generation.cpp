@@ -64,6 +64,48 @@ void RayGenerator::packet(int x0, int y, int count, RayPacket& out) const {
     }
 }
 
+simd::vfloat RayGenerator::ndc_x(int x0) const {
+    using simd::vfloat;
+    const vfloat x = simd::to_float(simd::vint(x0) + simd::lane_index());
+    return (x + vfloat(0.5f)) / vfloat(float(width_)) * vfloat(2.0f) - vfloat(1.0f);
+}
+
+namespace {
+
+using simd::vfloat;
+
+// Row `row` of m * (x, y, z, w) as glm computes it: (m0 x + m1 y) + (m2 z + m3 w).
+vfloat transform_row(const glm::mat4& m, int row, vfloat x, float y, vfloat z, float w) {
+    return (vfloat(m[0][row]) * x + vfloat(m[1][row] * y)) + (vfloat(m[2][row]) * z + vfloat(m[3][row] * w));
+}
+
+}  // namespace
+
+simd::V3<vfloat> RayGenerator::directions(int x0, int y) const {
+    const vfloat nx = ndc_x(x0);
+    const float ny = ndc(x0, y).y;
+    const glm::mat4& m = ray_dir_matrix_;
+    const simd::V3<vfloat> v{transform_row(m, 0, nx, ny, vfloat(1.0f), 1.0f),
+                             transform_row(m, 1, nx, ny, vfloat(1.0f), 1.0f),
+                             transform_row(m, 2, nx, ny, vfloat(1.0f), 1.0f)};
+    // glm::normalize: v * (1 / sqrt(dot(v, v))), dot as (x x + y y) + z z.
+    const vfloat inv = vfloat(1.0f) / simd::sqrt((v.x * v.x + v.y * v.y) + v.z * v.z);
+    return v * inv;
+}
+
+vfloat RayGenerator::distances_from_depth(int x0, int y, vfloat depth) const {
+    const vfloat nx = ndc_x(x0);
+    const float ny = ndc(x0, y).y;
+    const glm::mat4& m = inverse_view_projection_;
+    const vfloat z = depth * vfloat(2.0f) - vfloat(1.0f);
+    const vfloat w = transform_row(m, 3, nx, ny, z, 1.0f);
+    const vfloat px = transform_row(m, 0, nx, ny, z, 1.0f) / w - vfloat(eye_.x);
+    const vfloat py = transform_row(m, 1, nx, ny, z, 1.0f) / w - vfloat(eye_.y);
+    const vfloat pz = transform_row(m, 2, nx, ny, z, 1.0f) / w - vfloat(eye_.z);
+    const vfloat length = simd::sqrt((px * px + py * py) + pz * pz);
+    return simd::select(depth < vfloat(1.0f), length, vfloat(std::numeric_limits<float>::infinity()));
+}
+
 float RayGenerator::window_depth(const glm::vec3& world) const {
     const glm::vec4 clip = view_projection_ * glm::vec4(world, 1.0f);
     return clip.z / clip.w * 0.5f + 0.5f;

@@ -12,6 +12,7 @@
 
 #include "raster/core/camera.h"
 #include "raster/march/ray_packet.h"
+#include "raster/simd/lane_math.h"
 
 namespace tessera::march {
 
@@ -26,6 +27,12 @@ public:
     // Rays through pixels (x0 .. x0+count-1, y); count in 1..kMarchLanes.
     void packet(int x0, int y, int count, RayPacket& out) const;
 
+    // direction() and distance_from_depth() for the kLanes pixels (x0 + i, y), one per lane
+    // i, with their arithmetic in their order (glm's mat4 * vec4, normalize and length), so
+    // each lane equals the one-pixel call bit for bit: the per-pixel passes' form.
+    simd::V3<simd::vfloat> directions(int x0, int y) const;
+    simd::vfloat distances_from_depth(int x0, int y, simd::vfloat depth) const;
+
     // Converts a world-space point to window depth (z_ndc * 0.5 + 0.5), the value the depth
     // buffer stores, so marched hits and rasterized triangles are compared in one space.
     float window_depth(const glm::vec3& world) const;
@@ -39,6 +46,10 @@ public:
     // them are visible (the rasterizer clips triangles to the same planes).
     float near_distance(glm::vec3 d) const { return near_ / glm::dot(d, forward_); }
     float far_distance(glm::vec3 d) const { return far_ / glm::dot(d, forward_); }
+    simd::vfloat far_distances(const simd::V3<simd::vfloat>& d) const {  // glm::dot's order
+        using simd::vfloat;
+        return vfloat(far_) / ((d.x * vfloat(forward_.x) + d.y * vfloat(forward_.y)) + d.z * vfloat(forward_.z));
+    }
 
     const glm::vec3& eye() const { return eye_; }
     int width() const { return width_; }
@@ -46,6 +57,7 @@ public:
 
 private:
     glm::vec2 ndc(int x, int y) const;
+    simd::vfloat ndc_x(int x0) const;
 
     glm::mat4 ray_dir_matrix_;   // (E V P)^-1: NDC (x, y, 1, 1) -> eye-relative direction
     glm::mat4 view_projection_;  // world -> clip

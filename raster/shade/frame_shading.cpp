@@ -96,6 +96,19 @@ glm::vec4 FrameShading::background(int x, int y) const {
     return glm::vec4(background_radiance(scene_.background, ray_x_ * xn + ray_y_ * yn + ray_z_), 1.0f);
 }
 
+simd::V3<simd::vfloat> FrameShading::background_lanes(int x0, int y) const {
+    using simd::vfloat;
+    // background()'s arithmetic, in its order, with x_ndc per lane.
+    const vfloat x = simd::to_float(simd::vint(x0) + simd::lane_index());
+    const vfloat xn = vfloat(2.0f) * (x + vfloat(0.5f)) / vfloat(float(state_.width)) - vfloat(1.0f);
+    const float yn = 1.0f - 2.0f * (float(y) + 0.5f) / float(state_.height);
+    const glm::vec3 row = ray_y_ * yn;
+    const simd::V3<vfloat> d{(vfloat(ray_x_.x) * xn + vfloat(row.x)) + vfloat(ray_z_.x),
+                             (vfloat(ray_x_.y) * xn + vfloat(row.y)) + vfloat(ray_z_.y),
+                             (vfloat(ray_x_.z) * xn + vfloat(row.z)) + vfloat(ray_z_.z)};
+    return background_radiance_lanes(scene_.background, d);
+}
+
 template <class F>
 void FrameShading::shade_with(std::span<const CoveredPixel> pixels, std::span<glm::vec4> out) const {
     if (out.size() != pixels.size())
@@ -191,6 +204,26 @@ void shade_tile(const FrameShading& shading, const Tile& tile) {
 }
 
 void shade_background(const FrameShading& shading, const Tile& tile) {
+    constexpr int N = simd::kLanes;
+    static_assert(N <= 32, "one bit per lane");
+    alignas(64) float r[N], g[N], b[N];
+    for (int y = tile.rect.y0; y < tile.rect.y1; ++y)
+        for (int x0 = tile.rect.x0; x0 < tile.rect.x1; x0 += N) {
+            const int n = std::min(N, tile.rect.x1 - x0);
+            uint32_t empty = 0;
+            for (int i = 0; i < n; ++i)
+                if (tile.active(x0 + i, y) && tile.triangle_at(x0 + i, y) == kNoTriangle) empty |= 1u << i;
+            if (!empty) continue;
+            const simd::V3<simd::vfloat> c = shading.background_lanes(x0, y);
+            c.x.store(r);
+            c.y.store(g);
+            c.z.store(b);
+            for (int i = 0; i < n; ++i)
+                if (empty >> i & 1u) tile.colour_at(x0 + i, y) = glm::vec4(r[i], g[i], b[i], 1.0f);
+        }
+}
+
+void shade_background_reference(const FrameShading& shading, const Tile& tile) {
     for (int y = tile.rect.y0; y < tile.rect.y1; ++y)
         for (int x = tile.rect.x0; x < tile.rect.x1; ++x)
             if (tile.active(x, y) && tile.triangle_at(x, y) == kNoTriangle) tile.colour_at(x, y) = shading.background(x, y);

@@ -23,6 +23,7 @@
 #include "raster/core/frame.h"
 #include "raster/core/tile.h"
 #include "raster/scene/scene.h"
+#include "raster/simd/lane_math.h"
 #include "raster/core/visibility.h"
 
 namespace tessera::shade {
@@ -60,6 +61,8 @@ public:
 
     // The environment seen through pixel (x, y), alpha 1.
     glm::vec4 background(int x, int y) const;
+    // Its RGB through pixels (x0 + i, y), one per lane i < kLanes: background() lane by lane.
+    simd::V3<simd::vfloat> background_lanes(int x0, int y) const;
 
     const RenderState& state() const { return state_; }
     bool transparent(uint32_t triangle) const;
@@ -79,10 +82,13 @@ private:
 
 // The opaque pass of a tile: visible pixels shaded, the others given the background (pixels
 // the tile does not hold, Tile::coverage, are left alone). It is shade_surfaces then
-// shade_background, which write disjoint pixels (callers time them apart).
+// shade_background, which write disjoint pixels (callers time them apart). shade_background
+// evaluates the environment kLanes pixels of a row at a time; shade_background_reference,
+// one pixel at a time through background(), is what it is tested against.
 void shade_tile(const FrameShading& shading, const Tile& tile);
 void shade_surfaces(const FrameShading& shading, const Tile& tile);
 void shade_background(const FrameShading& shading, const Tile& tile);
+void shade_background_reference(const FrameShading& shading, const Tile& tile);
 
 // Alpha blending (glBlendFunc(GL_SRC_ALPHA, GL_ONE_MINUS_SRC_ALPHA)) for the colour, c = c_src
 // * a_src + c_dst * (1 - a_src). Coverage composes as "over", a = a_src + a_dst * (1 - a_src)
