@@ -6,8 +6,12 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <bit>
 #include <cmath>
 #include <cstring>
+#include <iterator>
+#include <limits>
 #include <vector>
 
 #include "raster/march/background_pass.h"
@@ -212,4 +216,127 @@ TEST(MarchPass, BadPassParametersAreRefused) {
     Fog fog;
     fog.density = glm::vec3(-1.0f);
     EXPECT_THROW(FogPass(rays, fog), std::invalid_argument);
+}
+
+namespace {
+
+// A depth buffer with every kind of value the fog pass meets: the sphere's depths, the cleared
+// 1.0, depths from the near plane to beyond the far fade, and 0.
+Frame fog_probe_frame(const RayGenerator& rays, const Camera& camera, const scene::Background& env) {
+    Frame frame;
+    sphere_pass(rays, env).run(frame.all());
+    for (int y = 0; y < H; ++y)
+        for (int x = 0; x < W; ++x) {
+            const size_t i = size_t(y) * W + size_t(x);
+            frame.colour[i] = glm::vec4(float(x) / W, float(y) / H, 0.5f, 0.75f);
+            if (frame.depth[i] < 1.0f || (x + y) % 3 == 0) continue;
+            const glm::vec3 d = rays.direction(x, y);
+            const float fraction = float((x * 7 + y * 3) % 41) / 40.0f * 1.05f;  // up to past the far plane
+            frame.depth[i] = (x + y) % 7 == 0 ? 0.0f : rays.window_depth(camera.eye + d * (fraction * rays.far_distance(d)));
+        }
+    return frame;
+}
+
+}  // namespace
+
+TEST(MarchPass, RayLanesEqualTheOnePixelForms) {
+    for (const glm::vec3 lookat : {glm::vec3(0.0f), glm::vec3(0.4f, 50.0f, 3.9f), glm::vec3(0.4f, -50.0f, 3.9f)}) {
+        Camera camera = march_camera(W, H);
+        camera.lookat = lookat;
+        const RayGenerator rays(camera, W, H);
+        constexpr int N = simd::kLanes;
+        const float depths[] = {0.0f, 0.3f, 0.9f, 0.999999f, 1.0f, 2.0f, std::numeric_limits<float>::quiet_NaN()};
+        for (int y = 0; y < H; ++y)
+            for (int x0 = 0; x0 < W; x0 += N) {
+                alignas(64) float depth[N], dx[N], dy[N], dz[N], distance[N];
+                for (int i = 0; i < N; ++i) depth[i] = depths[size_t(x0 + i + y) % std::size(depths)];
+                const simd::V3<simd::vfloat> d = rays.directions(x0, y);
+                d.x.store(dx);
+                d.y.store(dy);
+                d.z.store(dz);
+                rays.distances_from_depth(x0, y, simd::vfloat::load(depth)).store(distance);
+                for (int i = 0; i < N; ++i) {
+                    const glm::vec3 one = rays.direction(x0 + i, y);
+                    ASSERT_EQ(std::bit_cast<uint32_t>(dx[i]), std::bit_cast<uint32_t>(one.x)) << x0 + i << "," << y;
+                    ASSERT_EQ(std::bit_cast<uint32_t>(dy[i]), std::bit_cast<uint32_t>(one.y)) << x0 + i << "," << y;
+                    ASSERT_EQ(std::bit_cast<uint32_t>(dz[i]), std::bit_cast<uint32_t>(one.z)) << x0 + i << "," << y;
+                    ASSERT_EQ(std::bit_cast<uint32_t>(distance[i]),
+                              std::bit_cast<uint32_t>(rays.distance_from_depth(x0 + i, y, depth[i])))
+                        << x0 + i << "," << y << " depth " << depth[i];
+                }
+            }
+    }
+}
+
+TEST(MarchPass, FogTransmittanceInLanesEqualsTheOneRayForm) {
+    constexpr int N = simd::kLanes;
+    const float inf = std::numeric_limits<float>::infinity(), nan = std::numeric_limits<float>::quiet_NaN();
+    const float dys[] = {0.0f, -0.0f, 1e-9f, -1e-9f, 1e-6f, 2e-5f, -2e-5f, 0.3f, -0.3f, 1.0f, -1.0f, 0.999f};
+    const float distances[] = {0.0f, -1.0f, 1e-30f, 0.01f, 1.0f, 7.5f, 100.0f, 1e6f, 3e38f, inf, nan};
+    for (const float falloff : {0.0f, 0.05f, 0.8f, 4.0f})
+        for (const float base : {-3.0f, 0.0f, 2.5f}) {
+            Fog fog;
+            fog.density = {0.2f, 0.0f, 3.0f};  // a clear channel too
+            fog.falloff = falloff;
+            fog.base_height = base;
+            const glm::vec3 eye(0.4f, 1.3f, 4.0f);
+            const size_t cases = std::size(dys) * std::size(distances);
+            for (size_t start = 0; start < cases; start += N) {
+                alignas(64) float dy[N], distance[N], t[3][N];
+                for (int i = 0; i < N; ++i) {
+                    const size_t k = std::min(start + size_t(i), cases - 1);
+                    dy[i] = dys[k % std::size(dys)];
+                    distance[i] = distances[k / std::size(dys)];
+                }
+                const simd::V3<simd::vfloat> lanes = fog.transmittance(eye, simd::vfloat::load(dy), simd::vfloat::load(distance));
+                lanes.x.store(t[0]);
+                lanes.y.store(t[1]);
+                lanes.z.store(t[2]);
+                for (int i = 0; i < N; ++i) {
+                    const glm::vec3 one = fog.transmittance(eye, {0.0f, dy[i], 0.0f}, distance[i]);
+                    for (int c = 0; c < 3; ++c) {
+                        // NaN only where falloff * dy * D overflows (D near FLT_MAX), in both.
+                        if (!(distance[i] > 1e30f)) ASSERT_FALSE(std::isnan(one[c])) << "dy " << dy[i] << " D " << distance[i];
+                        if (std::isnan(one[c]) && std::isnan(t[c][i])) continue;
+                        ASSERT_EQ(std::bit_cast<uint32_t>(t[c][i]), std::bit_cast<uint32_t>(one[c]))
+                            << "falloff " << falloff << " dy " << dy[i] << " distance " << distance[i] << " channel " << c;
+                    }
+                }
+            }
+        }
+}
+
+// The per-pixel passes in lanes against their one-pixel references: background and fog over
+// sphere, empty, near, far-faded and beyond-far pixels, for a camera looking across the
+// horizon, up and down, with constant and height fog; pixels another tile owns are left alone.
+TEST(MarchPass, FogAndBackgroundInLanesEqualThePixelByPixelReference) {
+    const scene::Background env = sky_background();
+    for (const glm::vec3 lookat : {glm::vec3(0.0f), glm::vec3(0.4f, 50.0f, 3.9f), glm::vec3(0.4f, -50.0f, 3.9f)})
+        for (const float falloff : {0.0f, 0.8f}) {
+            Camera camera = march_camera(W, H);
+            camera.lookat = lookat;
+            const RayGenerator rays(camera, W, H);
+            Fog fog;
+            fog.density = {0.05f, 0.0f, 0.3f};
+            fog.colour = {0.6f, 0.6f, 0.7f};
+            fog.falloff = falloff;
+            const FogPass fog_pass(rays, fog);
+            const BackgroundPass background(rays, env);
+            const Frame start = fog_probe_frame(rays, camera, env);
+            std::vector<uint8_t> coverage(size_t(W) * H, 1);
+            for (size_t i = 0; i < coverage.size(); i += 5) coverage[i] = 0;
+            Frame lanes = start, one = start;
+            for (const TileRect r : {TileRect{0, 0, W, H}, TileRect{3, 2, 29, 17}}) {
+                Tile a = lanes.tile(r.x0, r.y0, r.x1, r.y1), b = one.tile(r.x0, r.y0, r.x1, r.y1);
+                background.run(a);
+                background.run_reference(b);
+                a.coverage = b.coverage = coverage.data() + size_t(r.y0) * W + size_t(r.x0);
+                fog_pass.run(a);
+                fog_pass.run_reference(b);
+            }
+            ASSERT_EQ(std::memcmp(lanes.colour.data(), one.colour.data(), sizeof(glm::vec4) * W * H), 0)
+                << "falloff " << falloff << " looking at y " << lookat.y;
+            EXPECT_EQ(lanes.colour[5], start.colour[5]);  // not this tile's: no fog
+            EXPECT_NE(lanes.colour[1], start.colour[1]);
+        }
 }

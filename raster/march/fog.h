@@ -13,8 +13,14 @@
 // its series 1 - x/2 + x^2/6 for |x| < 1e-4 (relative error below x^3/24 ~ 4e-14).
 // The background is infinitely far: D = infinity gives tau = infinity (T = 0, pure fog
 // colour) except for a height fog seen upward, which integrates to e^{-b (o_y - y0)} / (b d_y).
+//
+// The exponentials are simd::exp_of / expm1_of (double precision rounded once: the correctly
+// rounded float but for near-ties), so the lane form of the transmittance, what the fog pass
+// runs, gives exactly what the one-ray form gives at every lane width.
 #pragma once
 #include <glm/glm.hpp>
+
+#include "raster/simd/lane_math.h"
 
 namespace tessera::march {
 
@@ -36,6 +42,9 @@ struct Fog {
 
     // exp(-tau) per channel.
     glm::vec3 transmittance(glm::vec3 origin, glm::vec3 direction, float distance) const;
+    // The same for kLanes rays from `origin`, given their directions' y and distances, one per
+    // lane: equal lane by lane to the form above.
+    simd::V3<simd::vfloat> transmittance(glm::vec3 origin, simd::vfloat direction_y, simd::vfloat distance) const;
 
     // What the eye sees of `radiance` leaving a surface `distance` away (infinity: background).
     glm::vec3 apply(glm::vec3 radiance, glm::vec3 origin, glm::vec3 direction, float distance) const {

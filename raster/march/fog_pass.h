@@ -21,7 +21,10 @@ public:
     // Validates the fog (std::invalid_argument); the generator is borrowed.
     FogPass(const RayGenerator& rays, const Fog& fog);
 
+    // kLanes pixels of a row at a time (the lane forms of ray_generation.h and fog.h).
     void run(const Tile& target) const;
+    // One pixel at a time through the one-ray forms: what run() is tested against.
+    void run_reference(const Tile& target) const;
 
 private:
     const RayGenerator& rays_;
