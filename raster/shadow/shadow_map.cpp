@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <bit>
 #include <cmath>
+#include <cstring>
 #include <limits>
 #include <stdexcept>
 #include <string>
@@ -68,22 +69,40 @@ auto held_by(const MapPoint<F>& m, float low, float high) {
            (m.z <= F(1.0f));
 }
 
+// Cohen-Sutherland outcodes of points against the window [-limit, limit]^2 of an orthographic
+// view_projection (its x and y; w is 1). A non-finite point gets no outcode.
+class WindowCodes {
+public:
+    WindowCodes(const glm::mat4& view_projection, float limit)
+        : row_x_(view_projection[0][0], view_projection[1][0], view_projection[2][0], view_projection[3][0]),
+          row_y_(view_projection[0][1], view_projection[1][1], view_projection[2][1], view_projection[3][1]),
+          limit_(limit) {}
+    uint8_t operator()(const glm::vec3& position) const {
+        const glm::vec4 p(position, 1.0f);
+        const float x = glm::dot(row_x_, p), y = glm::dot(row_y_, p);
+        return uint8_t((x < -limit_) | (x > limit_) << 1 | (y < -limit_) << 2 | (y > limit_) << 3);
+    }
+
+private:
+    glm::vec4 row_x_, row_y_;
+    float limit_;
+};
+
+// The window an orthographic cascade draws: a texel beyond the map's edge on each side, so
+// that a kept triangle covers every texel centre any triangle could.
+float window_limit(int size) { return 1.0f + 2.0f / float(size); }
+
 // `out` becomes the positions of `mesh` and those of its triangles that an orthographic
-// view_projection does not put entirely beyond one edge of [-limit, limit]^2 (Cohen-Sutherland
-// outcodes of the vertices). Non-finite vertices get no outcode: their triangles are kept
-// for the rasterizer to reject. The depth the kept triangles leave is the depth all of them
-// would leave: the others cover no texel centre.
+// view_projection does not put entirely beyond one edge of [-limit, limit]^2 (outcodes of the
+// vertices). Triangles with a non-finite vertex are kept for the rasterizer to reject. The
+// depth the kept triangles leave is the depth all of them would leave: the others cover no
+// texel centre.
 void cull_to_window(const Mesh& mesh, const glm::mat4& view_projection, float limit, Mesh& out) {
     out.positions.assign(mesh.positions.begin(), mesh.positions.end());
     out.indices.clear();
     std::vector<uint8_t> code(mesh.positions.size());
-    const glm::vec4 row_x(view_projection[0][0], view_projection[1][0], view_projection[2][0], view_projection[3][0]);
-    const glm::vec4 row_y(view_projection[0][1], view_projection[1][1], view_projection[2][1], view_projection[3][1]);
-    for (size_t v = 0; v < code.size(); ++v) {
-        const glm::vec4 p(mesh.positions[v], 1.0f);
-        const float x = glm::dot(row_x, p), y = glm::dot(row_y, p);
-        code[v] = uint8_t((x < -limit) | (x > limit) << 1 | (y < -limit) << 2 | (y > limit) << 3);
-    }
+    const WindowCodes code_of(view_projection, limit);
+    for (size_t v = 0; v < code.size(); ++v) code[v] = code_of(mesh.positions[v]);
     const size_t n = mesh.vertex_count();
     for (size_t i = 0; i + 2 < mesh.indices.size(); i += 3) {
         const uint32_t a = mesh.indices[i], b = mesh.indices[i + 1], c = mesh.indices[i + 2];
@@ -124,22 +143,64 @@ void ShadowMap::render(pipeline::Rasterizer& rasterizer, const Mesh& mesh, const
     } else {
         spheres.push_back(bounds_sphere(bounds));
     }
+    // What moved since the last render, vertex by vertex (bitwise: a NaN that stays is no
+    // move); with other triangles, everything did.
+    const bool same_triangles = rendered_mesh_.positions.size() == mesh.positions.size() &&
+                                rendered_mesh_.indices == mesh.indices;
+    bool any_moved = false;
+    if (same_triangles) {
+        moved_.resize(mesh.vertex_count());
+        for (size_t v = 0; v < moved_.size(); ++v) {
+            moved_[v] = std::memcmp(&mesh.positions[v], &rendered_mesh_.positions[v], sizeof(glm::vec3)) != 0;
+            any_moved |= moved_[v] != 0;
+        }
+    }
     cascades_.resize(spheres.size());
+    cascades_rendered_ = 0;
     pipeline::RasterOptions raster;
     raster.cull = pipeline::CullMode::none;  // both faces of a surface cast shadows
     raster.depth_only = true;
     for (size_t c = 0; c < spheres.size(); ++c) {
         Cascade& cascade = cascades_[c];
-        cascade.projection = light.distant ? fit_distant_light(light.position, spheres[c], bounds, size)
-                                           : fit_point_light(light.position, spheres[c], bounds, size);
+        const LightProjection projection = light.distant ? fit_distant_light(light.position, spheres[c], bounds, size)
+                                                         : fit_point_light(light.position, spheres[c], bounds, size);
+        // The depth is a function of the view_projection, the size and the triangles alone
+        // (the rasterizer's result does not depend on anything else).
+        const bool same_view = cascade.rendered && same_triangles && cascade.depth.width == size &&
+                               std::memcmp(&projection.view_projection, &cascade.projection.view_projection,
+                                           sizeof(glm::mat4)) == 0;
+        cascade.projection = projection;
+        if (same_view && (!any_moved || !moved_in_window(mesh, projection, light.distant, moved_))) continue;
+        cascade.rendered = false;  // until the render below has succeeded
         const Mesh* drawn = &mesh;
         if (light.distant) {
-            cull_to_window(mesh, cascade.projection.view_projection, 1.0f + 2.0f / float(size), culled_);
+            cull_to_window(mesh, projection.view_projection, window_limit(size), culled_);
             drawn = &culled_;
         }
-        rasterizer.render(*drawn, cascade.projection.view_projection, pipeline::Viewport(size, size), raster,
-                          cascade.depth);
+        rasterizer.render(*drawn, projection.view_projection, pipeline::Viewport(size, size), raster, cascade.depth);
+        cascade.rendered = true;
+        ++cascades_rendered_;
     }
+    if (!same_triangles) rendered_mesh_.indices.assign(mesh.indices.begin(), mesh.indices.end());
+    if (!same_triangles || any_moved) rendered_mesh_.positions.assign(mesh.positions.begin(), mesh.positions.end());
+}
+
+bool ShadowMap::moved_in_window(const Mesh& mesh, const LightProjection& projection, bool orthographic,
+                                const std::vector<uint8_t>& moved) const {
+    // A perspective cascade draws the whole mesh: any move may show in it.
+    if (!orthographic) return true;
+    const WindowCodes code(projection.view_projection, window_limit(options_.resolution));
+    const std::vector<glm::vec3>& before = rendered_mesh_.positions;
+    const std::vector<glm::vec3>& now = mesh.positions;
+    const size_t n = mesh.vertex_count();
+    for (size_t i = 0; i + 2 < mesh.indices.size(); i += 3) {
+        const uint32_t a = mesh.indices[i], b = mesh.indices[i + 1], c = mesh.indices[i + 2];
+        if (a >= n || b >= n || c >= n || !(moved[a] | moved[b] | moved[c])) continue;
+        // Culled (cull_to_window) both before and now: it covered no texel of this window.
+        if (!(code(before[a]) & code(before[b]) & code(before[c])) || !(code(now[a]) & code(now[b]) & code(now[c])))
+            return true;
+    }
+    return false;
 }
 
 template <bool kMajority>
@@ -241,20 +302,30 @@ void ShadowMap::mark_lit(const SurfacePoints& points, uint8_t bit, std::span<uin
             // read texel 0.
             const vint cx = simd::select(here, simd::round_to_int(simd::floor(m.x)), zero);
             const vint cy = simd::select(here, simd::round_to_int(simd::floor(m.y)), zero);
+            // lit(): at least taps - taps/2 of the taps lit, i.e. fewer than `dark_needed`
+            // dark. As count_lit<true>, the taps stop once every lane's majority is known
+            // (both counts are monotone): inside a lit or a shadowed region, after
+            // dark_needed of them. Gathers are most of the lookup's cost.
+            const int dark_needed = taps / 2 + 1, lit_needed = taps - taps / 2;
             vint dark(0);
+            int read = 0;
             for (int dy = -r; dy <= r; ++dy) {
                 const vint ty = cy + vint(dy);
                 const vmask row_in = (ty >= zero) & (ty < limit);  // taps beyond the edge are lit
-                for (int dx = -r; dx <= r; ++dx) {
+                int dx = -r;
+                for (; dx <= r; ++dx) {
                     const vint tx = cx + vint(dx);
                     const vmask in = row_in & (tx >= zero) & (tx < limit);
                     const vint texel = simd::select(in, ty * limit + tx, zero);
                     const vmask shadowed = in & (simd::gather(depth, texel) < m.z);
                     dark = dark + simd::select(shadowed, vint(1), zero);
+                    if (++read < lit_needed) continue;
+                    const vmask decided = (dark >= vint(dark_needed)) | (vint(read) - dark >= vint(lit_needed));
+                    if (!simd::any(simd::andnot(decided, here))) break;
                 }
+                if (dx <= r) break;
             }
-            // lit(): at least taps - taps/2 of the taps lit, i.e. at most taps/2 dark.
-            lit = lit | (here & (dark < vint(taps / 2 + 1)));
+            lit = lit | (here & (dark < vint(dark_needed)));
             pending = simd::andnot(here, pending);
         }
         lit = lit | pending;  // outside every cascade

@@ -78,9 +78,14 @@ public:
               const Camera& camera, const ShadowMapOptions& options);
 
     // Renders again (the next frame: the mesh, light or camera moved), reusing the maps'
-    // memory; `camera` null: one map over the whole mesh.
+    // memory; `camera` null: one map over the whole mesh. A cascade whose projection is the
+    // same as last time and in whose window no triangle moved keeps its depth (it would
+    // render to the same bytes): in an animation only the maps a light, the camera's fit or
+    // a caster changed are drawn again.
     void render(pipeline::Rasterizer& rasterizer, const Mesh& mesh, const ShadowLight& light,
                 const Camera* camera = nullptr);
+    // How many cascades the last render() drew (the others were kept).
+    int cascades_rendered() const { return cascades_rendered_; }
 
     // Fraction of the PCF taps that see `position` (pushed off the surface along `normal`)
     // from the light, in the cascade that holds it (1 outside every cascade).
@@ -111,7 +116,13 @@ private:
     struct Cascade {
         LightProjection projection;
         VisibilityBuffer depth;
+        bool rendered = false;  // depth holds `projection`'s view of the mesh last rendered
     };
+
+    // Whether cascade c, whose projection did not change, must be drawn again because some
+    // triangle reaching its window (before or after) moved; `moved`: per vertex.
+    bool moved_in_window(const Mesh& mesh, const LightProjection& projection, bool orthographic,
+                         const std::vector<uint8_t>& moved) const;
 
     // The cascade holding the receiver and the taps of it that are lit; with kMajority,
     // stops once at least half are lit or more than half are not, returning a count on the
@@ -122,6 +133,9 @@ private:
     ShadowLight light_;
     ShadowMapOptions options_;
     Mesh culled_;  // for an orthographic cascade: the triangles that reach its window
+    Mesh rendered_mesh_;  // the mesh of the last render, to find what moved since
+    std::vector<uint8_t> moved_;  // per vertex: its position changed since the last render
+    int cascades_rendered_ = 0;
     std::vector<float> splits_;
     std::vector<Cascade> cascades_;
 };
