@@ -267,7 +267,7 @@ std::string tile_pass_list(const PassMs& ms, double tiles) {
 
 // Per-stage times of the frames rendered, for --stats and its summary.
 struct StageTimes {
-    std::vector<double> total, animate, bake, bvh, visibility, tiles;
+    std::vector<double> total, animate, bake, bvh, shadow_maps, visibility, tiles;
     std::array<std::vector<double>, render::kTilePasses + 1> tile_passes;  // and whole tiles, last
 
     void add(const render::FrameStats& st) {
@@ -277,6 +277,7 @@ struct StageTimes {
         animate.push_back(st.animate_ms);
         bake.push_back(st.bake_ms);
         bvh.push_back(st.bvh_ms);
+        shadow_maps.push_back(st.shadow_maps_ms);
         visibility.push_back(st.visibility_ms);
         tiles.push_back(st.tiles_ms);
     }
@@ -468,12 +469,17 @@ void FrameLoop::report(int f, const fs::path& path, const render::FrameStats& st
     times_.add(st);
     if (o_.stats)
         std::fprintf(stderr,
-                     "%sframe %d: %.1f ms (animate %.1f, bake %.1f, bvh %.1f [%llu/%llu objects built], visibility %.1f "
+                     "%sframe %d: %.1f ms (animate %.1f, bake %.1f, bvh %.1f [%llu/%llu objects built], shadow maps %.1f "
+                     "[%llu/%llu cascades drawn], "
+                     "visibility %.1f "
                      "[vertex %.1f, setup+bin %.1f], tiles %.1f [%s]), %llu triangles, %llu shadowed "
                      "pixels, heap %.1f MiB, rss %.1f MiB\n",
                      tty_ ? "\r\033[K" : "", f, st.total_ms, st.animate_ms, st.bake_ms, st.bvh_ms,
                      static_cast<unsigned long long>(st.bvh_objects_built),
-                     static_cast<unsigned long long>(st.bvh_objects), st.visibility_ms, st.raster.vertex_ms,
+                     static_cast<unsigned long long>(st.bvh_objects), st.shadow_maps_ms,
+                     static_cast<unsigned long long>(st.shadow_cascades_drawn),
+                     static_cast<unsigned long long>(st.shadow_cascades), st.visibility_ms,
+                     st.raster.vertex_ms,
                      st.raster.setup_bin_ms, st.tiles_ms,
                      tile_pass_list([&](size_t p) { return st.tile_passes.ms[p]; }, st.tile_passes.tiles_ms).c_str(),
                      static_cast<unsigned long long>(st.triangles),
@@ -506,9 +512,10 @@ int FrameLoop::finish(int stopped_by) {
     if (o_.stats && done_ > 0)
         std::fprintf(stderr,
                      "summary: %zu frames of %dx%d in %.2f s (%.2f fps); median per frame: total %.1f ms, animate %.1f, "
-                     "bake %.1f, bvh %.1f, visibility %.1f, tiles %.1f [%s]; peak rss %.1f MiB\n",
+                     "bake %.1f, bvh %.1f, shadow maps %.1f, visibility %.1f, tiles %.1f [%s]; peak rss %.1f MiB\n",
                      done_, plan_.width, plan_.height, elapsed, double(done_) / elapsed, median(times_.total),
-                     median(times_.animate), median(times_.bake), median(times_.bvh), median(times_.visibility),
+                     median(times_.animate), median(times_.bake), median(times_.bvh), median(times_.shadow_maps),
+                     median(times_.visibility),
                      median(times_.tiles),
                      tile_pass_list([&](size_t p) { return median(times_.tile_passes[p]); },
                                     median(times_.tile_passes.back())).c_str(),

@@ -20,6 +20,8 @@ struct ShadowMapSettings {
     float normal_offset = 1.6f;
     // Receiver offset towards the light, in texels.
     float depth_bias = 0.5f;
+
+    bool operator==(const ShadowMapSettings&) const = default;
 };
 
 // Throws std::invalid_argument naming the first value out of range (and its range).

@@ -67,6 +67,23 @@ glm::vec3 shadow_target(const scene::Light& light) {
     return light.position.w == 0.0f ? glm::normalize(p) * kDistantLight : p;
 }
 
+void build_shadow_maps(pipeline::Rasterizer& rasterizer, const Mesh& mesh, std::span<const scene::Light> lights,
+                       const Camera& camera, std::vector<shadow::ShadowMap>& maps) {
+    bool reuse = maps.size() == lights.size();
+    for (size_t l = 0; reuse && l < lights.size(); ++l) reuse = maps[l].options() == lights[l].shadow_map;
+    if (!reuse) {
+        maps.clear();
+        maps.reserve(lights.size());
+    }
+    for (size_t l = 0; l < lights.size(); ++l) {
+        const shadow::ShadowLight light(shadow_target(lights[l]), lights[l].position.w == 0.0f);  // w = 0: directional
+        if (reuse)
+            maps[l].render(rasterizer, mesh, light, &camera);
+        else
+            maps.emplace_back(rasterizer, mesh, light, camera, lights[l].shadow_map);
+    }
+}
+
 // What every region of one frame shares, built once per frame: the animated scene baked, the
 // BVH (kept by the renderer, see Impl::rays), the lights' shadow tests, the metaballs at this
 // time.
@@ -121,8 +138,8 @@ struct FrameRenderer::Impl {
     int rows_first = 0, rows_last = 1 << 30;  // set_rows
     // Reused from frame to frame (and region to region): its pages are touched once.
     VisibilityBuffer visibility;
-    // --shadows map: each light's cascades, rendered again every frame into the same memory,
-    // by a rasterizer of their own (whose buffers stay sized for the maps, not the frame).
+    // --shadows map: each light's cascades, rendered again each frame into the same memory
+    // where something in them moved (build_shadow_maps), by a rasterizer of their own (whose buffers stay sized for the maps, not the frame).
     std::vector<shadow::ShadowMap> maps;
     pipeline::Rasterizer map_rasterizer;
 
@@ -281,14 +298,12 @@ void FrameRenderer::Impl::prepare(float time, FrameState& frame, FrameStats& sta
         } else {
             // Fitted to the whole frame's camera (regions and bands share the maps).
             TraceScope map_trace("shadow maps");
-            const bool reuse = maps.size() == s.lights.size();
-            if (!reuse) maps.clear();
-            for (size_t l = 0; l < s.lights.size(); ++l) {
-                const shadow::ShadowLight light(frame.light_targets[l], s.lights[l].position.w == 0.0f);
-                if (reuse)
-                    maps[l].render(map_rasterizer, frame.baked.mesh, light, &s.camera);
-                else
-                    maps.emplace_back(map_rasterizer, frame.baked.mesh, light, s.camera, s.lights[l].shadow_map);
+            const auto t0 = Clock::now();
+            build_shadow_maps(map_rasterizer, frame.baked.mesh, s.lights, s.camera, maps);
+            stats.shadow_maps_ms = ms_since(t0);
+            for (const shadow::ShadowMap& map : maps) {
+                stats.shadow_cascades += uint64_t(map.cascade_count());
+                stats.shadow_cascades_drawn += uint64_t(map.cascades_rendered());
             }
             frame.light_test = shadow::shadow_map_test(maps);
         }

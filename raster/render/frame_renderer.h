@@ -31,6 +31,7 @@
 
 #include "raster/core/frame.h"
 #include "raster/pipeline/rasterizer.h"
+#include "raster/shadow/shadow_map.h"
 #include "raster/render/band_layout.h"
 #include "raster/render/animated_scene.h"
 #include "raster/render/tile_pass_times.h"
@@ -48,16 +49,29 @@ ShadowMode parse_shadow_mode(std::string_view name);
 // (w = 0) a point 10^4 units away along its direction.
 glm::vec3 shadow_target(const scene::Light& light);
 
+// Every light's shadow maps for one frame (--shadows map): each light's own settings, its
+// cascades fitted to `camera`, aimed at shadow_target(). `maps` that already hold one map per
+// light with those settings are rendered again in place (their memory reused from frame to
+// frame); otherwise they are built anew. Throws std::invalid_argument for settings out of
+// range.
+void build_shadow_maps(pipeline::Rasterizer& rasterizer, const Mesh& mesh, std::span<const scene::Light> lights,
+                       const Camera& camera, std::vector<shadow::ShadowMap>& maps);
+
 struct FrameStats {
     // visibility: the rasterizer's vertex, setup/bin and tile raster stages, or Embree's
     // primary rays; tiles: the per-tile work after it (shading, shadows, blending, passes),
     // wall time, broken into its passes in tile_passes (thread time, tile_pass_times.h).
-    double animate_ms = 0, bake_ms = 0, bvh_ms = 0, visibility_ms = 0, tiles_ms = 0, total_ms = 0;
+    // shadow_maps: every light's maps rendered (--shadows map; their lookups are in tiles).
+    double animate_ms = 0, bake_ms = 0, bvh_ms = 0, shadow_maps_ms = 0, visibility_ms = 0, tiles_ms = 0,
+           total_ms = 0;
     uint64_t triangles = 0;
     uint64_t shadowed_pixels = 0;
     // Ray tracing: the objects in the BVH and how many of them had theirs built this frame
     // (the others did not move since the last frame).
     uint64_t bvh_objects = 0, bvh_objects_built = 0;
+    // Shadow maps: the lights' cascades and how many were drawn this frame (the others kept
+    // their depth: nothing in them moved, shadow_map.h).
+    uint64_t shadow_cascades = 0, shadow_cascades_drawn = 0;
     TilePassTimes tile_passes;
     pipeline::RasterStats raster;  // the raster renderer's own counts and stage times
 };

@@ -40,11 +40,7 @@ ShadowMethods compare_shadow_methods(pipeline::Rasterizer& rasterizer, const emb
 
     auto t0 = Clock::now();
     std::vector<shadow::ShadowMap> maps;
-    maps.reserve(lights.size());
-    for (size_t l = 0; l < lights.size(); ++l) {
-        const shadow::ShadowLight light(lights[l], frame.lights[l].position.w == 0.0f);  // w = 0: directional
-        maps.emplace_back(rasterizer, mesh, light, frame.camera, frame.lights[l].shadow_map);
-    }
+    build_shadow_maps(rasterizer, mesh, frame.lights, frame.camera, maps);
     const shadow::LightMask by_maps = shadow::compute_light_mask(visibility, mesh, vp, lights, shadow::shadow_map_test(maps));
     out.maps_ms = ms_since(t0);
 
