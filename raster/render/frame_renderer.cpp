@@ -139,7 +139,8 @@ struct FrameRenderer::Impl {
     // Reused from frame to frame (and region to region): its pages are touched once.
     VisibilityBuffer visibility;
     // --shadows map: each light's cascades, rendered again each frame into the same memory
-    // where something in them moved (build_shadow_maps), by a rasterizer of their own (whose buffers stay sized for the maps, not the frame).
+    // where something in them moved (build_shadow_maps), by a rasterizer of their own (whose
+    // buffers stay sized for the maps, not the frame).
     std::vector<shadow::ShadowMap> maps;
     pipeline::Rasterizer map_rasterizer;
 
