@@ -21,6 +21,19 @@ std::shared_ptr<const texture::Texture> solid(glm::vec3 c) {
     return std::make_shared<const texture::Texture>(1, 1, std::vector<glm::vec4>{glm::vec4(c, 1.0f)});
 }
 
+// A cube map whose every face is the 2 x 2 image file (top row first): red green / blue white.
+scene::Background quadrant_cube_map() {
+    io::FloatImage image;
+    image.width = image.height = 2;
+    image.channels = 3;
+    image.pixels = {1, 0, 0, 0, 1, 0, 0, 0, 1, 1, 1, 1};
+    scene::Background b;
+    b.kind = scene::Background::Kind::cube_map;
+    for (auto& face : b.cube.faces)
+        face = std::make_shared<const texture::Texture>(texture::Texture::from_image(image, texture::TexelEncoding::linear));
+    return b;
+}
+
 }  // namespace
 
 TEST(ShadingBackground, CubeMapSelectsTheMajorAxisFace) {
@@ -33,14 +46,7 @@ TEST(ShadingBackground, CubeMapSelectsTheMajorAxisFace) {
 }
 
 TEST(ShadingBackground, CubeMapFaceOrientationFollowsOpenGL) {
-    // A 2 x 2 +z face given as an image file would be (top row first): red green / blue white.
-    io::FloatImage image;
-    image.width = image.height = 2;
-    image.channels = 3;
-    image.pixels = {1, 0, 0, 0, 1, 0, 0, 0, 1, 1, 1, 1};
-    scene::Background b;
-    b.kind = scene::Background::Kind::cube_map;
-    for (auto& face : b.cube.faces) face = std::make_shared<const texture::Texture>(texture::Texture::from_image(image, texture::TexelEncoding::linear));
+    const scene::Background b = quadrant_cube_map();
     // +z: s = (x/|z| + 1)/2, t = (-y/|z| + 1)/2, t = 0 at the image's top row, so direction
     // (-x, +y) reads (s, t) = (0.25, 0.25), the image's top-left texel. (OpenGL cube maps are
     // left-handed: skybox images are authored for this table.)
@@ -193,14 +199,7 @@ TEST(ShadingBackground, SkyInLanesEqualsTheOneDirectionFormBitForBit) {
 }
 
 TEST(ShadingBackground, CubeMapInLanesEqualsTheOneDirectionForm) {
-    io::FloatImage image;
-    image.width = image.height = 2;
-    image.channels = 3;
-    image.pixels = {1, 0, 0, 0, 1, 0, 0, 0, 1, 1, 1, 1};
-    scene::Background b;
-    b.kind = scene::Background::Kind::cube_map;
-    for (auto& face : b.cube.faces)
-        face = std::make_shared<const texture::Texture>(texture::Texture::from_image(image, texture::TexelEncoding::linear));
+    const scene::Background b = quadrant_cube_map();
     std::vector<glm::vec3> directions = probe_directions(glm::vec3(1.0f));
     directions.resize(600);  // texture lookups are the slow part; the grid's first rows suffice
     expect_lanes_equal_one_by_one(b, directions);

@@ -204,23 +204,9 @@ void shade_tile(const FrameShading& shading, const Tile& tile) {
 }
 
 void shade_background(const FrameShading& shading, const Tile& tile) {
-    constexpr int N = simd::kLanes;
-    static_assert(N <= 32, "one bit per lane");
-    alignas(64) float r[N], g[N], b[N];
-    for (int y = tile.rect.y0; y < tile.rect.y1; ++y)
-        for (int x0 = tile.rect.x0; x0 < tile.rect.x1; x0 += N) {
-            const int n = std::min(N, tile.rect.x1 - x0);
-            uint32_t empty = 0;
-            for (int i = 0; i < n; ++i)
-                if (tile.active(x0 + i, y) && tile.triangle_at(x0 + i, y) == kNoTriangle) empty |= 1u << i;
-            if (!empty) continue;
-            const simd::V3<simd::vfloat> c = shading.background_lanes(x0, y);
-            c.x.store(r);
-            c.y.store(g);
-            c.z.store(b);
-            for (int i = 0; i < n; ++i)
-                if (empty >> i & 1u) tile.colour_at(x0 + i, y) = glm::vec4(r[i], g[i], b[i], 1.0f);
-        }
+    fill_background_lanes(
+        tile, [&](int x, int y) { return tile.active(x, y) && tile.triangle_at(x, y) == kNoTriangle; },
+        [&](int x0, int y) { return shading.background_lanes(x0, y); });
 }
 
 void shade_background_reference(const FrameShading& shading, const Tile& tile) {
