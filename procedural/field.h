@@ -112,12 +112,12 @@ public:
         const glm::vec2 q = glm::vec2(x, z) * p_.frequency;
         Noise2 r;
         switch (p_.relief) {
-            case Relief::fbm: r = fbm(q, p_.fractal); r.value = 0.5f * r.value + 0.5f; r.gradient *= 0.5f; break;
+            case Relief::fbm: r = fbm(q, p_.fractal); break;
             case Relief::ridged: r = ridged(q, p_.fractal); break;
-            case Relief::warped: r = domain_warp(q, p_.fractal, p_.warp); r.value = 0.5f * r.value + 0.5f; r.gradient *= 0.5f; break;
+            case Relief::warped: r = domain_warp(q, p_.fractal, p_.warp); break;
             case Relief::dunes: r = dunes(q, p_.dunes); break;
         }
-        return {p_.base + p_.amplitude * r.value, (p_.amplitude * p_.frequency) * r.gradient};
+        return height_of_relief(r);
     }
     float value(glm::vec3 p) const override { return height(p.x, p.z).value - p.y; }
     FieldSample sample(glm::vec3 p) const override {
@@ -132,6 +132,21 @@ public:
     const TerrainParams& params() const { return p_; }
 
 private:
+    // h from the relief r at q = (x, z) * frequency (fbm and warped relief map [-1, 1] to
+    // [0, 1]): height() and the batch forms both finish with it.
+    TESSERA_NOISE_INLINE Noise2 height_of_relief(Noise2 r) const {
+        if (p_.relief == Relief::fbm || p_.relief == Relief::warped) {
+            r.value = 0.5f * r.value + 0.5f;
+            r.gradient *= 0.5f;
+        }
+        return {p_.base + p_.amplitude * r.value, (p_.amplitude * p_.frequency) * r.gradient};
+    }
+    // The relief over n points q, through the batch form of fractal_batch.h or
+    // dunes.h; dq/dx and dq/dz null: values only.
+    void relief_batch(size_t n, const float* qx, const float* qz, float* r, float* dqx, float* dqz) const;
+    template <bool kGradient>
+    void heights(size_t n, const float* x, const float* y, const float* z, float* value, float* gx, float* gz) const;
+
     TerrainParams p_;
 };
 
