@@ -34,6 +34,15 @@ concept BatchField = MarchField<F> && requires(const F& field, const float* c, f
     field.value_batch(size_t{1}, c, c, c, out);
 };
 
+// A packet field that bounds itself along its packet's rays: may_reach(t_from, t_to) is the
+// mask of lanes whose ray might meet f >= 0 at a sample with t in [t_from, t_to] (it may keep
+// a lane that does not, never drop one that does). march_packet skips the samples no lane
+// might need, so a bound changes the work, never the result.
+template <class F>
+concept BoundedPacketField = PacketField<F> && requires(const F& field, simd::vfloat t) {
+    { field.may_reach(t, t) } -> std::same_as<simd::vmask>;
+};
+
 // Field values at kMarchLanes points: the field's own packet or batch loop where it has one,
 // otherwise one value() per lane.
 template <MarchField F>

@@ -4,12 +4,14 @@
 // std::invalid_argument for bounds that cannot hold a surface:
 // - SlabSurface: a field that lies between two horizontal planes (the terrain and its
 //   3-D noise);
-// - MetaballSurface: metaballs, culled per packet to the balls the packet's rays cross.
+// - MetaballSurface: metaballs, culled per packet to the balls the packet's rays cross, which
+//   also bound the field along each ray (metaball_packet.h).
 #pragma once
 #include "raster/march/bounds.h"
 #include "raster/march/march_field.h"
 #include "raster/march/march.h"
 #include "raster/march/metaball_field.h"
+#include "raster/march/metaball_packet.h"
 
 namespace tessera::march {
 
@@ -35,14 +37,14 @@ struct SlabSurface {
 struct MetaballSurface {
     const MetaballField& field;
 
-    using Scratch = MetaballField;
+    using Scratch = MetaballPacket;
 
     void validate() const {}  // the field validated its balls when it was built
 
-    const MetaballField& bind(const RayPacket& rays, float t_far, PacketSegments& segments,
-                              Scratch& subset) const {
-        field.cull(rays, t_far, subset, segments);
-        return subset;
+    const MetaballPacket& bind(const RayPacket& rays, float t_far, PacketSegments& segments,
+                               Scratch& packet) const {
+        field.cull(rays, t_far, packet, segments);
+        return packet;
     }
 };
 

@@ -6,6 +6,7 @@
 #include <string>
 
 #include "raster/march/bounds.h"
+#include "raster/march/metaball_packet.h"
 
 namespace tessera::march {
 
@@ -166,38 +167,70 @@ bool cone_may_touch(const PacketCone& cone, glm::vec3 centre, float radius) {
 
 }  // namespace
 
-void MetaballField::cull(const RayPacket& rays, float t_far, MetaballField& subset,
+namespace {
+
+// The "a < b ? b : a" and "b < a ? b : a" of std::max and std::min in lanes (their choice
+// between equal zeros of opposite sign, and their NaN handling, differ from max/min
+// instructions), so lane intervals equal sphere_interval's bit for bit.
+simd::vfloat std_max(simd::vfloat a, simd::vfloat b) { return simd::select(a < b, b, a); }
+simd::vfloat std_min(simd::vfloat a, simd::vfloat b) { return simd::select(b < a, b, a); }
+
+}  // namespace
+
+void MetaballField::cull(const RayPacket& rays, float t_far, MetaballPacket& packet,
                          PacketSegments& segments) const {
+    using simd::vfloat;
+    using simd::vmask;
+    MetaballField& subset = packet.field_;
     subset.style_ = style_;
     subset.blinn_ = blinn_;
     for (auto* v : {&subset.cx_, &subset.cy_, &subset.cz_, &subset.radius_, &subset.inv_r2_,
-                    &subset.weight_})
+                    &subset.weight_, &packet.centre_norm_, &packet.positive_weight_})
         v->clear();
+    packet.closest_.clear();
+    packet.miss2_.clear();
     const PacketCone cone = packet_cone(rays);
-    Interval hull[kMarchLanes];
+    const vfloat ox = vfloat::load(rays.ox), oy = vfloat::load(rays.oy), oz = vfloat::load(rays.oz);
+    const vfloat dx = vfloat::load(rays.dx), dy = vfloat::load(rays.dy), dz = vfloat::load(rays.dz);
+    const vmask live = simd::lane_index() < simd::vint(rays.count);
+    vfloat hull0(Interval{}.t0), hull1(Interval{}.t1);  // empty
+    float magnitude = style_.threshold;
     for (size_t b = 0; b < cx_.size(); ++b) {
         const glm::vec3 c(cx_[b], cy_[b], cz_[b]);
         if (!cone_may_touch(cone, c, radius_[b])) continue;
-        bool crossed = false;
-        for (int i = 0; i < rays.count; ++i) {
-            const Interval s = sphere_interval(rays.origin(i), rays.direction(i), c, radius_[b], t_far);
-            if (s.empty()) continue;
-            crossed = true;
-            hull[i] = hull[i].empty() ? s
-                                      : Interval{std::min(hull[i].t0, s.t0), std::max(hull[i].t1, s.t1)};
-        }
-        if (!crossed) continue;
+        // sphere_interval in lanes, with its operations in its order (glm::dot sums x, y, z).
+        const vfloat ocx = ox - vfloat(c.x), ocy = oy - vfloat(c.y), ocz = oz - vfloat(c.z);
+        const vfloat along = (dx * ocx + dy * ocy) + dz * ocz;
+        const vfloat px = ocx - along * dx, py = ocy - along * dy, pz = ocz - along * dz;
+        const vfloat miss2 = (px * px + py * py) + pz * pz;
+        const vfloat disc = vfloat(radius_[b] * radius_[b]) - miss2;
+        const vfloat root = simd::sqrt(disc);
+        const vfloat closest = along * vfloat(-1.0f);  // -along, sign of zero included
+        const vfloat s0 = std_max(closest - root, vfloat(0.0f));
+        const vfloat s1 = std_min(closest + root, vfloat(t_far));
+        const vmask crosses = simd::andnot(disc < vfloat(0.0f), live & (s0 <= s1));
+        if (!simd::any(crosses)) continue;
+        const vmask first = simd::andnot(hull0 <= hull1, crosses);
+        hull0 = simd::select(crosses, simd::select(first, s0, std_min(hull0, s0)), hull0);
+        hull1 = simd::select(crosses, simd::select(first, s1, std_max(hull1, s1)), hull1);
         subset.cx_.push_back(cx_[b]);
         subset.cy_.push_back(cy_[b]);
         subset.cz_.push_back(cz_[b]);
         subset.radius_.push_back(radius_[b]);
         subset.inv_r2_.push_back(inv_r2_[b]);
         subset.weight_.push_back(weight_[b]);
+        packet.centre_norm_.push_back(glm::length(c));
+        packet.positive_weight_.push_back(std::max(weight_[b], 0.0f));
+        packet.closest_.emplace_back();
+        packet.miss2_.emplace_back();
+        closest.store(packet.closest_.back().v);
+        miss2.store(packet.miss2_.back().v);
+        magnitude += std::abs(weight_[b]);
     }
-    for (int i = 0; i < kMarchLanes; ++i) {
-        segments.t0[i] = hull[i].t0;
-        segments.t1[i] = hull[i].t1;
-    }
+    hull0.store(segments.t0);
+    hull1.store(segments.t1);
+    for (int i = 0; i < kMarchLanes; ++i) packet.origin_norm_.v[i] = glm::length(rays.origin(i));
+    packet.reach_ = style_.threshold - 1e-5f * magnitude;
 }
 
 }  // namespace tessera::march
