@@ -28,16 +28,6 @@ void ImplicitField::sample_batch(size_t n, const float* x, const float* y, const
     }
 }
 
-void ImplicitField::value_batch_by_sampling(size_t n, const float* x, const float* y,
-                                            const float* z, float* value) const {
-    constexpr size_t kBlock = 256;
-    float gx[kBlock], gy[kBlock], gz[kBlock];
-    for (size_t start = 0; start < n; start += kBlock) {
-        const size_t count = n - start < kBlock ? n - start : kBlock;
-        sample_batch(count, x + start, y + start, z + start, value + start, gx, gy, gz);
-    }
-}
-
 // --- SineNoiseField -------------------------------------------------------------------------
 
 SineNoiseField::SineNoiseField() {
@@ -173,22 +163,47 @@ NoiseVolumeField::NoiseVolumeField(const VolumeParams& params) : p_(params) {
                                     "base finite");
 }
 
-void NoiseVolumeField::value_batch(size_t n, const float* x, const float* y, const float* z,
-                                   float* value) const {
-    value_batch_by_sampling(n, x, y, z, value);
+// sample() over blocks of points: the lattice coordinates, fbm_batch, then each point finished
+// as sample() finishes it, so every value and gradient is sample()'s.
+template <bool kGradient>
+void NoiseVolumeField::samples(size_t n, const float* x, const float* y, const float* z, float* value,
+                               float* gx, float* gy, float* gz) const {
+    constexpr size_t kBlock = 64;
+    float qx[kBlock] = {}, qy[kBlock] = {}, qz[kBlock] = {};  // (initialised: GCC cannot see the loop below fill them)
+    float r[kBlock], rx[kBlock], ry[kBlock], rz[kBlock];
+    for (size_t start = 0; start < n; start += kBlock) {
+        const size_t m = std::min(kBlock, n - start);
+        for (size_t i = 0; i < m; ++i) {
+            const glm::vec3 q = glm::vec3(x[start + i], y[start + i], z[start + i]) * p_.frequency;
+            qx[i] = q.x;
+            qy[i] = q.y;
+            qz[i] = q.z;
+        }
+        fbm_batch(p_.fractal, m, qx, qy, qz, r, kGradient ? rx : nullptr, kGradient ? ry : nullptr,
+                  kGradient ? rz : nullptr);
+        for (size_t i = 0; i < m; ++i) {
+            Noise3 noise{r[i], glm::vec3(0.0f)};
+            if constexpr (kGradient) noise.gradient = {rx[i], ry[i], rz[i]};
+            const FieldSample s =
+                sample_of(glm::vec3(x[start + i], y[start + i], z[start + i]), noise);
+            value[start + i] = s.value;
+            if constexpr (kGradient) {
+                gx[start + i] = s.gradient.x;
+                gy[start + i] = s.gradient.y;
+                gz[start + i] = s.gradient.z;
+            }
+        }
+    }
 }
 
-void NoiseVolumeField::sample_batch(size_t n, const float* __restrict x, const float* __restrict y,
-                                    const float* __restrict z, float* __restrict value,
-                                    float* __restrict gx, float* __restrict gy,
-                                    float* __restrict gz) const {
-    fbm_batch(p_.fractal, p_.frequency, n, x, y, z, value, gx, gy, gz);
-    for (size_t i = 0; i < n; ++i) {
-        value[i] = p_.base + p_.amplitude * value[i] - y[i];
-        gx[i] *= p_.amplitude;
-        gy[i] = p_.amplitude * gy[i] - 1.0f;
-        gz[i] *= p_.amplitude;
-    }
+void NoiseVolumeField::value_batch(size_t n, const float* x, const float* y, const float* z,
+                                   float* value) const {
+    samples<false>(n, x, y, z, value, nullptr, nullptr, nullptr);
+}
+
+void NoiseVolumeField::sample_batch(size_t n, const float* x, const float* y, const float* z, float* value,
+                                    float* gx, float* gy, float* gz) const {
+    samples<true>(n, x, y, z, value, gx, gy, gz);
 }
 
 }  // namespace tessera::procedural

@@ -32,18 +32,13 @@ public:
     virtual FieldSample sample(glm::vec3 p) const = 0;
     glm::vec3 gradient(glm::vec3 p) const { return sample(p).gradient; }
 
-    // n points (x[i], y[i], z[i]); writes value[i]. The base versions loop over value() and
+    // n points (x[i], y[i], z[i]); writes value[i] (and the gradient), what value() and
+    // sample() give at each point, bit for bit. The base versions loop over value() and
     // sample(); the fields below override them with vectorised loops.
     virtual void value_batch(size_t n, const float* x, const float* y, const float* z,
                              float* value) const;
     virtual void sample_batch(size_t n, const float* x, const float* y, const float* z,
                               float* value, float* gx, float* gy, float* gz) const;
-
-protected:
-    // value_batch for fields whose only vectorised loop also computes the gradient: runs
-    // sample_batch in blocks with scratch gradient storage.
-    void value_batch_by_sampling(size_t n, const float* x, const float* y, const float* z,
-                                 float* value) const;
 };
 
 // A 3-D noise of 16 sines with wave vectors from the
@@ -163,11 +158,7 @@ class NoiseVolumeField final : public ImplicitField {
 public:
     explicit NoiseVolumeField(const VolumeParams& params);
     float value(glm::vec3 p) const override { return sample(p).value; }
-    FieldSample sample(glm::vec3 p) const override {
-        const Noise3 n = fbm(p * p_.frequency, p_.fractal);
-        return {p_.base + p_.amplitude * n.value - p.y,
-                (p_.amplitude * p_.frequency) * n.gradient - glm::vec3(0.0f, 1.0f, 0.0f)};
-    }
+    FieldSample sample(glm::vec3 p) const override { return sample_of(p, fbm(p * p_.frequency, p_.fractal)); }
     void value_batch(size_t n, const float* x, const float* y, const float* z,
                      float* value) const override;
     void sample_batch(size_t n, const float* x, const float* y, const float* z, float* value,
@@ -176,6 +167,16 @@ public:
     const VolumeParams& params() const { return p_; }
 
 private:
+    // f and its gradient at p from n = fbm(p * frequency): sample() and the batch forms both
+    // finish with it.
+    TESSERA_NOISE_INLINE FieldSample sample_of(glm::vec3 p, Noise3 n) const {
+        return {p_.base + p_.amplitude * n.value - p.y,
+                (p_.amplitude * p_.frequency) * n.gradient - glm::vec3(0.0f, 1.0f, 0.0f)};
+    }
+    template <bool kGradient>
+    void samples(size_t n, const float* x, const float* y, const float* z, float* value, float* gx, float* gy,
+                 float* gz) const;
+
     VolumeParams p_;
 };
 

@@ -72,7 +72,8 @@ struct TorusLattice {
 namespace fractal_detail {
 
 // fBm: amplitude times the octave's noise; its gradient scaled by the chain rule.
-TESSERA_NOISE_INLINE void fbm_octave(Noise2& sum, Noise2 n, float amplitude, float frequency) {
+template <class Noise>
+TESSERA_NOISE_INLINE void fbm_octave(Noise& sum, Noise n, float amplitude, float frequency) {
     sum.value += amplitude * n.value;
     sum.gradient += (amplitude * frequency) * n.gradient;
 }
@@ -139,17 +140,15 @@ TESSERA_NOISE_INLINE Noise2 fbm_periodic(glm::vec2 p, glm::ivec2 period, const F
 
 // fBm of 3-D value noise, in [-1, 1] (volumes with overhangs; fog density).
 TESSERA_NOISE_INLINE Noise3 fbm(glm::vec3 p, const Fractal& f) {
-    float value = 0.0f, amplitude = 1.0f, frequency = 1.0f;
-    glm::vec3 gradient(0.0f);
+    Noise3 sum{0.0f, glm::vec3(0.0f)};
+    float amplitude = 1.0f, frequency = 1.0f;
     for (int i = 0; i < f.octaves; ++i) {
-        const Noise3 n = value_noise(p * frequency, octave_seed(f.seed, i));
-        value += amplitude * n.value;
-        gradient += (amplitude * frequency) * n.gradient;
+        fractal_detail::fbm_octave(sum, value_noise(p * frequency, octave_seed(f.seed, i)), amplitude, frequency);
         amplitude *= f.gain;
         frequency *= f.lacunarity;
     }
     const float norm = 1.0f / fractal_amplitude(f);
-    return {value * norm, gradient * norm};
+    return {sum.value * norm, sum.gradient * norm};
 }
 
 // Ridged multifractal (Musgrave): each octave is (offset - |noise|)^2, weighted by the previous

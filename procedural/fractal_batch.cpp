@@ -195,31 +195,51 @@ void domain_warp_batch(const Fractal& f, float amount, TorusLattice lattice, siz
     warp2(f, amount, lattice, n, x, y, value, dx, dy);
 }
 
-void fbm_batch(const Fractal& f, float scale, size_t n, const float* __restrict x,
-               const float* __restrict y, const float* __restrict z, float* __restrict value,
-               float* __restrict dx, float* __restrict dy, float* __restrict dz) {
-    for (size_t i = 0; i < n; ++i) value[i] = dx[i] = dy[i] = dz[i] = 0.0f;
-    float amplitude = 1.0f, frequency = scale;
+namespace {
+
+template <bool kGradient>
+void fbm3(const Fractal& f, size_t n, const float* __restrict x, const float* __restrict y,
+          const float* __restrict z, float* __restrict value, float* __restrict dx, float* __restrict dy,
+          float* __restrict dz) {
+    for (size_t i = 0; i < n; ++i) value[i] = 0.0f;
+    if constexpr (kGradient)
+        for (size_t i = 0; i < n; ++i) dx[i] = dy[i] = dz[i] = 0.0f;
+    float amplitude = 1.0f, frequency = 1.0f;
     for (int octave = 0; octave < f.octaves; ++octave) {
         const uint32_t seed = octave_seed(f.seed, octave);
-        const float slope = amplitude * frequency;
         for (size_t i = 0; i < n; ++i) {
-            const Noise3 s = value_noise(glm::vec3(x[i], y[i], z[i]) * frequency, seed);
-            value[i] += amplitude * s.value;
-            dx[i] += slope * s.gradient.x;
-            dy[i] += slope * s.gradient.y;
-            dz[i] += slope * s.gradient.z;
+            Noise3 sum{value[i], glm::vec3(0.0f)};
+            if constexpr (kGradient) sum.gradient = {dx[i], dy[i], dz[i]};
+            fractal_detail::fbm_octave(sum, value_noise(glm::vec3(x[i], y[i], z[i]) * frequency, seed), amplitude,
+                                       frequency);
+            value[i] = sum.value;
+            if constexpr (kGradient) {
+                dx[i] = sum.gradient.x;
+                dy[i] = sum.gradient.y;
+                dz[i] = sum.gradient.z;
+            }
         }
         amplitude *= f.gain;
         frequency *= f.lacunarity;
     }
     const float norm = 1.0f / fractal_amplitude(f);
-    for (size_t i = 0; i < n; ++i) {
-        value[i] *= norm;
-        dx[i] *= norm;
-        dy[i] *= norm;
-        dz[i] *= norm;
-    }
+    for (size_t i = 0; i < n; ++i) value[i] = value[i] * norm;
+    if constexpr (kGradient)
+        for (size_t i = 0; i < n; ++i) {
+            dx[i] = dx[i] * norm;
+            dy[i] = dy[i] * norm;
+            dz[i] = dz[i] * norm;
+        }
+}
+
+}  // namespace
+
+void fbm_batch(const Fractal& f, size_t n, const float* x, const float* y, const float* z, float* value,
+               float* dx, float* dy, float* dz) {
+    if (dx)
+        fbm3<true>(f, n, x, y, z, value, dx, dy, dz);
+    else
+        fbm3<false>(f, n, x, y, z, value, nullptr, nullptr, nullptr);
 }
 
 }  // namespace tessera::procedural

@@ -6,6 +6,7 @@
 #include <bit>
 #include <cmath>
 #include <functional>
+#include <memory>
 #include <vector>
 
 #include "procedural/dunes.h"
@@ -224,17 +225,23 @@ TEST(ProceduralNoise, BatchesMatchSinglePoints) {
     for (auto p : ps) x.push_back(p.x), y.push_back(p.y), z.push_back(p.z);
     std::vector<float> v(ps.size()), gx(ps.size()), gy(ps.size()), gz(ps.size());
 
-    tp::value_noise_batch(4, ps.size(), x.data(), y.data(), z.data(), v.data(), gx.data(), gy.data(), gz.data());
-    for (size_t i = 0; i < ps.size(); ++i) {
-        const tp::Noise3 s = tp::value_noise(ps[i], 4);
-        ASSERT_NEAR(v[i], s.value, 1e-6f);
-        ASSERT_NEAR(gy[i], s.gradient.y, 1e-5f);
-    }
-    tp::gradient_noise_batch(4, ps.size(), x.data(), y.data(), z.data(), v.data(), gx.data(), gy.data(), gz.data());
-    for (size_t i = 0; i < ps.size(); ++i) {
-        const tp::Noise3 s = tp::gradient_noise(ps[i], 4);
-        ASSERT_NEAR(v[i], s.value, 1e-6f);
-        ASSERT_NEAR(gz[i], s.gradient.z, 1e-5f);
+    // Bit for bit, with gradients and values only; and the 3-D fBm (lacunarity 2.5).
+    const auto same = [](float a, float b) { return std::bit_cast<uint32_t>(a) == std::bit_cast<uint32_t>(b); };
+    const tp::Fractal f{4, 2.5f, 0.5f, 1};
+    for (int kind = 0; kind < 3; ++kind) {
+        std::vector<float> values_only(ps.size());
+        const auto run = [&](float* value, float* dx, float* dy, float* dz) {
+            if (kind == 0) tp::value_noise_batch(4, ps.size(), x.data(), y.data(), z.data(), value, dx, dy, dz);
+            if (kind == 1) tp::gradient_noise_batch(4, ps.size(), x.data(), y.data(), z.data(), value, dx, dy, dz);
+            if (kind == 2) tp::fbm_batch(f, ps.size(), x.data(), y.data(), z.data(), value, dx, dy, dz);
+        };
+        run(v.data(), gx.data(), gy.data(), gz.data());
+        run(values_only.data(), nullptr, nullptr, nullptr);
+        for (size_t i = 0; i < ps.size(); ++i) {
+            const tp::Noise3 s = kind == 0 ? tp::value_noise(ps[i], 4) : kind == 1 ? tp::gradient_noise(ps[i], 4) : tp::fbm(ps[i], f);
+            ASSERT_TRUE(same(v[i], s.value) && same(values_only[i], s.value)) << kind << " " << i;
+            ASSERT_TRUE(same(gx[i], s.gradient.x) && same(gy[i], s.gradient.y) && same(gz[i], s.gradient.z)) << kind << " " << i;
+        }
     }
 }
 
@@ -339,9 +346,11 @@ TEST(ProceduralField, FieldGradientsAndBatches) {
     }
 }
 
-// The terrain's batch forms (what the marcher's packets call) give every relief's value() and
-// sample() bit for bit, at a count that is not a multiple of any block.
-TEST(ProceduralField, TerrainBatchesEqualSinglePointsBitForBit) {
+// The fields' batch forms (what the marcher's packets call) give value() and sample() bit for
+// bit: the terrain with every relief, the noise volume (a lacunarity that is not a power of
+// two, so each octave's scaling rounds) and the 16-sine noise, at a count that is not a
+// multiple of any block.
+TEST(ProceduralField, FieldBatchesEqualSinglePointsBitForBit) {
     const auto ps = points(150, 30);
     const size_t n = ps.size();
     std::vector<float> x, y, z;
@@ -351,18 +360,25 @@ TEST(ProceduralField, TerrainBatchesEqualSinglePointsBitForBit) {
     terrain.frequency = 0.12f;
     terrain.amplitude = 1.6f;
     terrain.base = -0.4f;
+    std::vector<std::unique_ptr<tp::ImplicitField>> fields;
     for (tp::Relief relief : {tp::Relief::fbm, tp::Relief::ridged, tp::Relief::warped, tp::Relief::dunes}) {
         terrain.relief = relief;
-        const tp::TerrainField field(terrain);
+        fields.push_back(std::make_unique<tp::TerrainField>(terrain));
+    }
+    fields.push_back(std::make_unique<tp::NoiseVolumeField>(tp::VolumeParams{tp::Fractal{4, 2.5f, 0.5f, 3}, 0.7f, 0.5f, 0.5f}));
+    fields.push_back(std::make_unique<tp::SineNoiseField>());
+    for (size_t f = 0; f < fields.size(); ++f) {
+        const tp::ImplicitField& field = *fields[f];
         std::vector<float> v(n), v2(n), gx(n), gy(n), gz(n);
         field.sample_batch(n, x.data(), y.data(), z.data(), v.data(), gx.data(), gy.data(), gz.data());
         field.value_batch(n, x.data(), y.data(), z.data(), v2.data());
         for (size_t i = 0; i < n; ++i) {
-            const tp::FieldSample s = field.sample(ps[i] * glm::vec3(1.0f, 0.1f, 1.0f));
-            const float bits[][2] = {{v[i], s.value}, {v2[i], s.value}, {gx[i], s.gradient.x},
+            const glm::vec3 p(x[i], y[i], z[i]);
+            const tp::FieldSample s = field.sample(p);
+            const float bits[][2] = {{v[i], s.value}, {v2[i], field.value(p)}, {gx[i], s.gradient.x},
                                      {gy[i], s.gradient.y}, {gz[i], s.gradient.z}};
             for (const auto& b : bits)
-                ASSERT_EQ(std::bit_cast<uint32_t>(b[0]), std::bit_cast<uint32_t>(b[1])) << int(relief) << " " << i;
+                ASSERT_EQ(std::bit_cast<uint32_t>(b[0]), std::bit_cast<uint32_t>(b[1])) << "field " << f << " point " << i;
         }
     }
 }
