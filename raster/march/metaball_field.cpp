@@ -7,6 +7,7 @@
 
 #include "raster/march/bounds.h"
 #include "raster/march/metaball_packet.h"
+#include "raster/simd/lane_math.h"
 
 namespace tessera::march {
 
@@ -104,6 +105,35 @@ void MetaballField::values(const float* x, const float* y, const float* z, float
     for (int i = 0; i < kMarchLanes; ++i) out[i] = sum[i] - style_.threshold;
 }
 
+template <class Kernel>
+void MetaballField::accumulate_gradient(const Kernel& kernel, const float* x, const float* y, const float* z,
+                                        float* gx, float* gy, float* gz) const {
+    // gradient() per lane: g += (w dK/ds 2 / R^2) (p - c), ball by ball.
+    using simd::vfloat;
+    const vfloat px = vfloat::load(x), py = vfloat::load(y), pz = vfloat::load(z);
+    vfloat ax(0.0f), ay(0.0f), az(0.0f);
+    for (size_t b = 0; b < cx_.size(); ++b) {
+        const vfloat qx = px - vfloat(cx_[b]), qy = py - vfloat(cy_[b]), qz = pz - vfloat(cz_[b]);
+        const KernelSample<vfloat> k = kernel.at((qx * qx + qy * qy + qz * qz) * vfloat(inv_r2_[b]));
+        const vfloat scale = vfloat(weight_[b]) * k.d_ds * vfloat(2.0f) * vfloat(inv_r2_[b]);
+        ax = ax + scale * qx;
+        ay = ay + scale * qy;
+        az = az + scale * qz;
+    }
+    ax.store(gx);
+    ay.store(gy);
+    az.store(gz);
+}
+
+void MetaballField::gradients(const float* x, const float* y, const float* z, float* gx, float* gy,
+                              float* gz) const {
+    switch (style_.kernel) {
+    case MetaballKernel::wyvill: accumulate_gradient(WyvillKernel{}, x, y, z, gx, gy, gz); break;
+    case MetaballKernel::perlin: accumulate_gradient(PerlinKernel{}, x, y, z, gx, gy, gz); break;
+    default: accumulate_gradient(blinn_, x, y, z, gx, gy, gz); break;
+    }
+}
+
 Interval MetaballField::bounds(glm::vec3 o, glm::vec3 d, float t_far) const {
     Interval hull;  // empty
     for (size_t b = 0; b < cx_.size(); ++b) {
@@ -167,18 +197,10 @@ bool cone_may_touch(const PacketCone& cone, glm::vec3 centre, float radius) {
 
 }  // namespace
 
-namespace {
-
-// The "a < b ? b : a" and "b < a ? b : a" of std::max and std::min in lanes (their choice
-// between equal zeros of opposite sign, and their NaN handling, differ from max/min
-// instructions), so lane intervals equal sphere_interval's bit for bit.
-simd::vfloat std_max(simd::vfloat a, simd::vfloat b) { return simd::select(a < b, b, a); }
-simd::vfloat std_min(simd::vfloat a, simd::vfloat b) { return simd::select(b < a, b, a); }
-
-}  // namespace
-
 void MetaballField::cull(const RayPacket& rays, float t_far, MetaballPacket& packet,
                          PacketSegments& segments) const {
+    using simd::std_max;
+    using simd::std_min;
     using simd::vfloat;
     using simd::vmask;
     MetaballField& subset = packet.field_;
@@ -198,7 +220,8 @@ void MetaballField::cull(const RayPacket& rays, float t_far, MetaballPacket& pac
     for (size_t b = 0; b < cx_.size(); ++b) {
         const glm::vec3 c(cx_[b], cy_[b], cz_[b]);
         if (!cone_may_touch(cone, c, radius_[b])) continue;
-        // sphere_interval in lanes, with its operations in its order (glm::dot sums x, y, z).
+        // sphere_interval in lanes, with its operations in its order (glm::dot sums x, y, z;
+        // std::max and std::min as std_max and std_min), so the intervals are its bits.
         const vfloat ocx = ox - vfloat(c.x), ocy = oy - vfloat(c.y), ocz = oz - vfloat(c.z);
         const vfloat along = (dx * ocx + dy * ocy) + dz * ocz;
         const vfloat px = ocx - along * dx, py = ocy - along * dy, pz = ocz - along * dz;

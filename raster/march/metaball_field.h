@@ -45,6 +45,8 @@ public:
     float value(glm::vec3 p) const;
     glm::vec3 gradient(glm::vec3 p) const;
     void values(const float* x, const float* y, const float* z, float* out) const;
+    // gradient() at kMarchLanes points, bit for bit (the same operations in the same order).
+    void gradients(const float* x, const float* y, const float* z, float* gx, float* gy, float* gz) const;
 
     // Fills `packet` (whose storage is reused) with the balls whose support some live lane of
     // `rays` crosses within [0, t_far] and each lane's closest approach to them, and
@@ -64,6 +66,9 @@ private:
     template <class Kernel>
     void accumulate(const Kernel& kernel, const float* x, const float* y, const float* z,
                     float* sum) const;
+    template <class Kernel>
+    void accumulate_gradient(const Kernel& kernel, const float* x, const float* y, const float* z, float* gx,
+                             float* gy, float* gz) const;
 
     MetaballStyle style_;
     BlinnKernel blinn_;

@@ -28,6 +28,9 @@ public:
     float value(glm::vec3 p) const { return field_.value(p); }
     glm::vec3 gradient(glm::vec3 p) const { return field_.gradient(p); }
     void values(const float* x, const float* y, const float* z, float* out) const { field_.values(x, y, z, out); }
+    void gradients(const float* x, const float* y, const float* z, float* gx, float* gy, float* gz) const {
+        field_.gradients(x, y, z, gx, gy, gz);
+    }
 
     // The lanes whose ray might reach the surface (f >= 0) at some point with t in
     // [t_from, t_to]; a lane left out has f < 0 at every sample there, as values() computes it.
