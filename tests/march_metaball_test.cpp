@@ -13,6 +13,7 @@
 #include "procedural/hash.h"
 #include "raster/march/bounds.h"
 #include "raster/march/march.h"
+#include "raster/march/march_surface.h"
 #include "raster/march/metaball_orbits.h"
 #include "raster/march/metaball_packet.h"
 #include "raster/march/ray_generation.h"
@@ -143,6 +144,47 @@ TEST(MarchMetaball, CullingKeepsTheHitsAndDropsFarBalls) {
             }
         EXPECT_GT(hits, 20);
     }
+}
+
+// A tile keeps every ball some ray through its pixels crosses (and the surface marches nothing
+// where it keeps none): tiles of several sizes and places over a wide view, balls near and
+// far, one of them behind the camera.
+TEST(MarchMetaball, TileCullingKeepsEveryBallItsPixelsCross) {
+    std::vector<Metaball> balls = orbiting_metaballs(6, 1.1f, 0.8f);
+    balls.push_back({{2.5f, 1.5f, -1.0f}, 0.5f, 1.0f});
+    balls.push_back({{0.0f, 0.5f, 9.0f}, 1.0f, 1.0f});   // behind the eye
+    balls.push_back({{-40.0f, 0.0f, 0.0f}, 1.0f, 1.0f});  // far off to the side
+    const MetaballField field(balls, MetaballStyle{});
+    Camera camera;
+    camera.eye = {0.0f, 0.5f, 5.0f};
+    camera.aspect = 1.5f;
+    camera.fovy_deg = 70.0f;
+    const int W = 96, H = 64;
+    const RayGenerator rays(camera, W, H);
+    const MetaballSurface surface{field};
+    int kept = 0, empty = 0;
+    for (const int size : {7, 16, 33})
+        for (int y0 = 0; y0 < H; y0 += size)
+            for (int x0 = 0; x0 < W; x0 += size) {
+                const TileRect rect{x0, y0, std::min(W, x0 + size), std::min(H, y0 + size)};
+                MetaballSurface::Scratch scratch;
+                empty += !surface.bind_tile(rays, rect, scratch);
+                for (size_t b = 0; b < balls.size(); ++b) {
+                    bool crossed = false;
+                    for (int y = rect.y0; y < rect.y1 && !crossed; ++y)
+                        for (int x = rect.x0; x < rect.x1 && !crossed; ++x)
+                            crossed = !sphere_interval(camera.eye, rays.direction(x, y), balls[b].centre,
+                                                       balls[b].radius, 100.0f).empty();
+                    if (!crossed) continue;
+                    bool found = false;
+                    for (size_t k = 0; k < scratch.tile.size(); ++k) found |= scratch.tile.ball(k).centre == balls[b].centre;
+                    ASSERT_TRUE(found) << "tile " << x0 << "," << y0 << " size " << size << " ball " << b;
+                    ++kept;
+                }
+                EXPECT_LT(scratch.tile.size(), balls.size());
+            }
+    EXPECT_GT(kept, 20);
+    EXPECT_GT(empty, 5);
 }
 
 namespace {

@@ -90,11 +90,12 @@ void march_packet(const F& field, const RayPacket& rays, const PacketSegments& s
     using simd::vmask;
     constexpr int N = kMarchLanes;
     alignas(64) float first_step[N], growth_of[N], px[N], py[N], pz[N], v[N];
+    const double steps_sum = settings.steps_sum();
     for (int i = 0; i < N; ++i) {
         t_hit[i] = kMiss;
         const Interval segment{segments.t0[i], segments.t1[i]};
         const MarchSettings::Schedule s =
-            segment.empty() ? MarchSettings::Schedule{0.0f, 1.0f} : settings.schedule(segment);
+            segment.empty() ? MarchSettings::Schedule{0.0f, 1.0f} : settings.schedule(segment, steps_sum);
         first_step[i] = s.first_step;
         growth_of[i] = s.growth;
     }

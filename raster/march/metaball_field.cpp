@@ -1,6 +1,7 @@
 #include "raster/march/metaball_field.h"
 
 #include <algorithm>
+#include <span>
 #include <cmath>
 #include <stdexcept>
 #include <string>
@@ -146,35 +147,35 @@ Interval MetaballField::bounds(glm::vec3 o, glm::vec3 d, float t_far) const {
 
 namespace {
 
-// The cone from a common origin that contains every live ray of a packet (primary rays share
-// the eye), so one test per ball can reject balls nowhere near the packet before the per-ray
-// tests. `valid` is false when the origins differ.
-struct PacketCone {
+// The cone from the eye that contains a tile's rays (their directions all lie in the cone of
+// its corner pixels' directions, since a pixel's unnormalised direction is linear in its
+// position), so one test per ball rejects balls nowhere near the tile before any per-ray
+// test. `valid` is false when the cone is too wide for the test.
+struct RayCone {
     bool valid = false;
     glm::vec3 apex{0.0f}, axis{0.0f};
     float cos_half = 1.0f, sin_half = 0.0f;  // of the half opening angle
 };
 
-PacketCone packet_cone(const RayPacket& rays) {
-    PacketCone cone;
+RayCone cone_around(glm::vec3 apex, std::span<const glm::vec3> directions) {
+    RayCone cone;
     glm::vec3 sum(0.0f);
-    for (int i = 0; i < rays.count; ++i) {
-        if (rays.origin(i) != rays.origin(0)) return cone;
-        sum += rays.direction(i);
-    }
+    for (const glm::vec3& d : directions) sum += d;
     const float len = glm::length(sum);
     if (!(len > 0.0f)) return cone;
     cone.axis = sum / len;
     float cos_half = 1.0f;
-    for (int i = 0; i < rays.count; ++i) cos_half = std::min(cos_half, glm::dot(rays.direction(i), cone.axis));
-    cone.apex = rays.origin(0);
-    // Widened by 1e-3 rad so rounding never rejects a ball a ray touches; a false "maybe"
-    // only costs the per-ray tests that follow.
-    const float half = std::acos(std::clamp(cos_half, -1.0f, 1.0f)) + 1e-3f;
-    if (half >= 1.5f) return cone;  // a very wide packet: the trigonometry below would not hold
-    cone.cos_half = std::cos(half);
-    cone.sin_half = std::sin(half);
-    cone.valid = true;
+    for (const glm::vec3& d : directions) cos_half = std::min(cos_half, glm::dot(d, cone.axis));
+    cone.apex = apex;
+    // Widened by e = 1e-3 rad so rounding never rejects a ball a ray touches (a false "maybe"
+    // only costs the per-ray tests that follow), through cos(h + e) = cos h cos e - sin h sin e
+    // and sin(h + e) = sin h cos e + cos h sin e.
+    const float c = std::clamp(cos_half, -1.0f, 1.0f), s = std::sqrt(1.0f - c * c);
+    constexpr float kCosE = 0.9999995f, kSinE = 9.9999983e-4f;  // cos 1e-3, sin 1e-3
+    cone.cos_half = c * kCosE - s * kSinE;
+    cone.sin_half = s * kCosE + c * kSinE;
+    // A very wide cone (half angle 1.5 rad or more): the test below would not hold.
+    cone.valid = cone.cos_half > 0.0707372f;  // cos 1.5
     return cone;
 }
 
@@ -182,7 +183,7 @@ PacketCone packet_cone(const RayPacket& rays) {
 // centre must not exceed the half angle plus the sphere's angular radius b (sin b = R/dist),
 // compared through cosines, cos(half + b) = cos half cos b - sin half sin b, with no
 // inverse trigonometry per ball.
-bool cone_may_touch(const PacketCone& cone, glm::vec3 centre, float radius) {
+bool cone_may_touch(const RayCone& cone, glm::vec3 centre, float radius) {
     if (!cone.valid) return true;
     const glm::vec3 v = centre - cone.apex;
     const float dist = glm::length(v);
@@ -196,6 +197,23 @@ bool cone_may_touch(const PacketCone& cone, glm::vec3 centre, float radius) {
 }
 
 }  // namespace
+
+void MetaballField::cull(glm::vec3 eye, std::span<const glm::vec3> corners, MetaballField& subset) const {
+    subset.style_ = style_;
+    subset.blinn_ = blinn_;
+    for (auto* v : {&subset.cx_, &subset.cy_, &subset.cz_, &subset.radius_, &subset.inv_r2_, &subset.weight_})
+        v->clear();
+    const RayCone cone = cone_around(eye, corners);
+    for (size_t b = 0; b < cx_.size(); ++b) {
+        if (!cone_may_touch(cone, {cx_[b], cy_[b], cz_[b]}, radius_[b])) continue;
+        subset.cx_.push_back(cx_[b]);
+        subset.cy_.push_back(cy_[b]);
+        subset.cz_.push_back(cz_[b]);
+        subset.radius_.push_back(radius_[b]);
+        subset.inv_r2_.push_back(inv_r2_[b]);
+        subset.weight_.push_back(weight_[b]);
+    }
+}
 
 void MetaballField::cull(const RayPacket& rays, float t_far, MetaballPacket& packet,
                          PacketSegments& segments) const {
@@ -211,7 +229,6 @@ void MetaballField::cull(const RayPacket& rays, float t_far, MetaballPacket& pac
         v->clear();
     packet.closest_.clear();
     packet.miss2_.clear();
-    const PacketCone cone = packet_cone(rays);
     const vfloat ox = vfloat::load(rays.ox), oy = vfloat::load(rays.oy), oz = vfloat::load(rays.oz);
     const vfloat dx = vfloat::load(rays.dx), dy = vfloat::load(rays.dy), dz = vfloat::load(rays.dz);
     const vmask live = simd::lane_index() < simd::vint(rays.count);
@@ -219,7 +236,6 @@ void MetaballField::cull(const RayPacket& rays, float t_far, MetaballPacket& pac
     float magnitude = style_.threshold;
     for (size_t b = 0; b < cx_.size(); ++b) {
         const glm::vec3 c(cx_[b], cy_[b], cz_[b]);
-        if (!cone_may_touch(cone, c, radius_[b])) continue;
         // sphere_interval in lanes, with its operations in its order (glm::dot sums x, y, z;
         // std::max and std::min as std_max and std_min), so the intervals are its bits.
         const vfloat ocx = ox - vfloat(c.x), ocy = oy - vfloat(c.y), ocz = oz - vfloat(c.z);
@@ -252,7 +268,7 @@ void MetaballField::cull(const RayPacket& rays, float t_far, MetaballPacket& pac
     }
     hull0.store(segments.t0);
     hull1.store(segments.t1);
-    for (int i = 0; i < kMarchLanes; ++i) packet.origin_norm_.v[i] = glm::length(rays.origin(i));
+    simd::sqrt((ox * ox + oy * oy) + oz * oz).store(packet.origin_norm_.v);
     packet.reach_ = style_.threshold - 1e-5f * magnitude;
 }
 

@@ -12,6 +12,7 @@
 #pragma once
 #include <glm/glm.hpp>
 
+#include <span>
 #include <vector>
 
 #include "raster/march/march.h"
@@ -48,6 +49,11 @@ public:
     // gradient() at kMarchLanes points, bit for bit (the same operations in the same order).
     void gradients(const float* x, const float* y, const float* z, float* gx, float* gy, float* gz) const;
 
+    // Fills `subset` (whose storage is reused) with the balls whose support may meet a ray from
+    // `eye` with a direction in the cone spanned by `corners` (a tile's corner pixels: every
+    // pixel ray of the tile lies in it), in their order; a cone wider than 1.5 rad keeps all.
+    void cull(glm::vec3 eye, std::span<const glm::vec3> corners, MetaballField& subset) const;
+
     // Fills `packet` (whose storage is reused) with the balls whose support some live lane of
     // `rays` crosses within [0, t_far] and each lane's closest approach to them, and
     // `segments` with each lane's march bounds: the hull of the support intervals it crosses,
@@ -59,6 +65,7 @@ public:
     Interval bounds(glm::vec3 o, glm::vec3 d, float t_far) const;
 
     size_t size() const { return cx_.size(); }
+    Metaball ball(size_t i) const { return {{cx_[i], cy_[i], cz_[i]}, radius_[i], weight_[i]}; }
 
 private:
     friend class MetaballPacket;

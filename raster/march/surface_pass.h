@@ -49,18 +49,27 @@ public:
         look_.normals.validate();
     }
 
-    // A packet's march bounds, hits, depth test, normals and shading in lanes.
-    void run(const Tile& target) const { each_packet(target, [this](auto&&... a) { run_packet(a...); }); }
-    // The same packets one ray at a time: march_ray, then the one-hit normal and shading. What
-    // run() is tested against (bit for bit).
+    // A packet's march bounds, hits, depth test, normals and shading in lanes, after the
+    // surface culls what the tile's rays may meet (when it can: Surface::bind_tile).
+    void run(const Tile& target) const {
+        typename Surface::Scratch scratch{};
+        if constexpr (requires { surface_.bind_tile(rays_, target.rect, scratch); })
+            if (target.rect.x0 >= target.rect.x1 || target.rect.y0 >= target.rect.y1 ||
+                !surface_.bind_tile(rays_, target.rect, scratch))
+                return;
+        each_packet(target, scratch, [this](auto&&... a) { run_packet(a...); });
+    }
+    // The same packets one ray at a time, bounded by the whole surface (no tile culling):
+    // march_ray, then the one-hit normal and shading. What run() is tested against (bit for
+    // bit).
     void run_reference(const Tile& target) const {
-        each_packet(target, [this](auto&&... a) { run_packet_reference(a...); });
+        typename Surface::Scratch scratch{};
+        each_packet(target, scratch, [this](auto&&... a) { run_packet_reference(a...); });
     }
 
 private:
     template <class Packet>
-    void each_packet(const Tile& target, Packet packet) const {
-        typename Surface::Scratch scratch{};
+    void each_packet(const Tile& target, typename Surface::Scratch& scratch, Packet packet) const {
         for (int y = target.rect.y0; y < target.rect.y1; ++y)
             for (int x = target.rect.x0; x < target.rect.x1; x += kMarchLanes) {
                 const int count = std::min(kMarchLanes, target.rect.x1 - x);
