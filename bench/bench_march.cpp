@@ -1,6 +1,7 @@
 // Ray-marching throughput, one thread (BM_MarchFrame: all cores): rays per second for each field and step strategy over
-// a 256x144 view (the scalar reference next to the packet path), the cost of normals, and
-// the per-pixel cost of fog and background. Compare rates within one run (the machine is
+// a 256x144 view (the scalar reference next to the packet path), the surface pass of the
+// terrain and metaball scenes in lanes and one ray at a time, the cost of normals, and the
+// per-pixel cost of fog and background. Compare rates within one run (the machine is
 // shared); items_per_second is rays (or pixels) per second.
 #include <benchmark/benchmark.h>
 
@@ -14,6 +15,7 @@
 #include "raster/march/procedural_surfaces.h"
 #include "raster/march/sphere_field.h"
 #include "raster/march/surface_normal.h"
+#include "raster/march/surface_pass.h"
 #include "raster/pipeline/rasterizer.h"
 
 using namespace tessera;
@@ -201,6 +203,61 @@ void BM_BackgroundSky(benchmark::State& state) {
     state.SetItemsProcessed(state.iterations() * W * H);
 }
 BENCHMARK(BM_BackgroundSky);
+
+// The surface pass as the built-in scenes run it, on a 256x144 view in 64x64 tiles, one
+// thread: args {scene (0 terrain: ridged relief, 5 octaves, geometric steps; 1 metaballs: 7
+// Wyvill balls, 96 uniform steps, a mirror term), lanes?}. Lanes is SurfacePass::run (the
+// packet march, bounds, normals and shading in lanes, tile culling), the other
+// run_reference (one ray at a time through march_ray, one hit at a time). items = pixels.
+void BM_SurfacePass(benchmark::State& state) {
+    const bool terrain = state.range(0) == 0, lanes = state.range(1) != 0;
+    procedural::TerrainParams relief;
+    relief.relief = procedural::Relief::ridged;
+    relief.fractal = {5, 2.0f, 0.5f, 3};
+    relief.frequency = 0.12f;
+    relief.amplitude = 1.6f;
+    relief.base = -0.4f;
+    const procedural::TerrainField field(relief);
+    std::vector<Metaball> balls = orbiting_metaballs(7, 1.0f, 0.9f);
+    for (Metaball& b : balls) b.centre *= 1.1f;
+    const MetaballField metaballs(balls, MetaballStyle{MetaballKernel::wyvill, 0.35f});
+    MarchSettings settings;
+    SurfaceLook look;
+    if (terrain) {
+        settings.strategy = StepStrategy::geometric;
+        settings.tolerance = 5e-4f;
+    } else {
+        settings.steps = 96;
+        look.material.reflectivity = 0.25f;
+    }
+    const Camera camera = terrain ? view({0.0f, 1.2f, 6.0f}, {0.5f, 0.8f, -4.0f}, 80.0f)
+                                  : view({0.0f, 0.6f, 4.2f}, {0.0f, 0.0f, 0.0f}, 20.0f);
+    const RayGenerator rays(camera, W, H);
+    scene::Background sky;
+    sky.kind = scene::Background::Kind::sky;
+    const SurfacePass terrain_pass(terrain_surface(field), rays, settings, look, sky);
+    const SurfacePass<MetaballSurface> metaball_pass(MetaballSurface{metaballs}, rays, settings, look, sky);
+    std::vector<float> depth(W * H);
+    std::vector<glm::vec4> colour(W * H);
+    for (auto _ : state) {
+        std::fill(depth.begin(), depth.end(), 1.0f);
+        for (int y0 = 0; y0 < H; y0 += 64)
+            for (int x0 = 0; x0 < W; x0 += 64) {
+                const Tile tile{{x0, y0, std::min(W, x0 + 64), std::min(H, y0 + 64)}, nullptr,
+                                depth.data() + y0 * W + x0, W, colour.data() + y0 * W + x0, W};
+                if (terrain)
+                    lanes ? terrain_pass.run(tile) : terrain_pass.run_reference(tile);
+                else
+                    lanes ? metaball_pass.run(tile) : metaball_pass.run_reference(tile);
+            }
+        benchmark::DoNotOptimize(colour.data());
+    }
+    state.SetItemsProcessed(state.iterations() * W * H);
+    int hits = 0;
+    for (float d : depth) hits += d < 1.0f;
+    state.counters["hit_fraction"] = double(hits) / (W * H);
+}
+BENCHMARK(BM_SurfacePass)->ArgNames({"scene", "lanes"})->ArgsProduct({{0, 1}, {0, 1}})->Unit(benchmark::kMillisecond);
 
 // A whole frame through the rasterizer's tile stage (tiles in parallel on every core):
 // background, marched surface and fog passes, 960x540. Arguments: {scene, fog?}.

@@ -1,6 +1,7 @@
 // Procedural generators: reaction-diffusion cell-steps per second (library step at 1 and 2
 // threads vs the plain scalar step of procedural/reaction_diffusion_reference.h), a copy-bandwidth run that gives the RD
-// memory roofline, noise samples per second, and heightfield generation.
+// memory roofline, noise samples per second, the terrain reliefs (batch and single point), and
+// heightfield generation.
 //
 // RD roofline: a cell-step reads A and B (8 bytes) and writes A' and B' (8 bytes); the copy
 // benchmark counts bytes the same way (STREAM convention: read + written, write-allocate
@@ -18,6 +19,7 @@
 #include <vector>
 
 #include "procedural/reaction_diffusion_reference.h"
+#include "procedural/dunes.h"
 #include "procedural/field.h"
 #include "procedural/fractal_batch.h"
 #include "procedural/hash.h"
@@ -167,7 +169,7 @@ void BM_Fbm2OctaveSamples(benchmark::State& state) {
     for (auto _ : state) {
         for (int row = 0; row < n; ++row) {
             std::fill(ys.begin(), ys.end(), float(row) / 64.0f);
-            tp::fbm_batch(f, 1.0f, n, xs.data(), ys.data(), v.data(), dx.data(), dy.data());
+            tp::fbm_batch(f, tp::OpenLattice{}, n, xs.data(), ys.data(), v.data(), dx.data(), dy.data());
             benchmark::DoNotOptimize(v.data());
         }
     }
@@ -191,6 +193,55 @@ void BM_TerrainFieldSamples(benchmark::State& state) {
     tp::TerrainParams p;
     p.fractal.octaves = 6;
     field_samples(state, tp::TerrainField(p), 1000.0f);
+}
+
+// The terrain reliefs over 4096 points, one thread: args {relief (0 fbm, 1 ridged, 2 warped,
+// 3 dunes), gradient?, batch?}. Batch is the vectorised form (fractal_batch.h, dunes.h), the
+// other the single-point reference in a loop; without gradient the batch computes values only
+// (what a marcher's steps need). items = points; octave_samples = points x 2-D noise octaves
+// evaluated per point (5 for fbm and ridged, 15 for warped's three fBm, 5 for the dunes' two).
+void BM_Relief(benchmark::State& state) {
+    const int relief = int(state.range(0));
+    const bool gradient = state.range(1) != 0, batch = state.range(2) != 0;
+    const size_t n = 4096;
+    const auto x = random_coords(n, 200, 1), y = random_coords(n, 200, 2);
+    std::vector<float> v(n), gx(n), gy(n);
+    const tp::Fractal f{5, 2.0f, 0.5f, 3};
+    const tp::Dunes d;
+    const tp::DuneWaves<tp::OpenLattice> waves = tp::dune_waves(d);
+    const tp::OpenLattice open;
+    float* dx = gradient ? gx.data() : nullptr;
+    float* dy = gradient ? gy.data() : nullptr;
+    auto single = [&](glm::vec2 p) {
+        switch (relief) {
+            case 0: return tp::fbm(p, f, open);
+            case 1: return tp::ridged(p, f, open);
+            case 2: return tp::domain_warp(p, f, 0.7f, open);
+            default: return tp::dunes(p, d, waves);
+        }
+    };
+    for (auto _ : state) {
+        if (!batch) {
+            for (size_t i = 0; i < n; ++i) {
+                const tp::Noise2 s = single({x[i], y[i]});
+                v[i] = s.value;
+                if (gradient) gx[i] = s.gradient.x, gy[i] = s.gradient.y;
+            }
+        } else {
+            switch (relief) {
+                case 0: tp::fbm_batch(f, open, n, x.data(), y.data(), v.data(), dx, dy); break;
+                case 1: tp::ridged_batch(f, 1.0f, open, n, x.data(), y.data(), v.data(), dx, dy); break;
+                case 2: tp::domain_warp_batch(f, 0.7f, open, n, x.data(), y.data(), v.data(), dx, dy); break;
+                default: tp::dunes_batch(d, waves, n, x.data(), y.data(), v.data(), dx, dy); break;
+            }
+        }
+        benchmark::DoNotOptimize(v.data());
+        benchmark::DoNotOptimize(gx.data());
+    }
+    state.SetItemsProcessed(state.iterations() * int64_t(n));
+    const int octaves[] = {5, 5, 15, 5};
+    state.counters["octave_samples"] =
+        benchmark::Counter(double(state.iterations()) * double(n) * octaves[relief], benchmark::Counter::kIsRate);
 }
 
 // Whole tileable heightfield (8 octaves), args: side, threads.
@@ -218,4 +269,8 @@ BENCHMARK(BM_GradientNoise3Gradient)->Unit(benchmark::kMicrosecond);
 BENCHMARK(BM_Fbm2OctaveSamples)->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_SineNoiseFieldSamples)->Unit(benchmark::kMicrosecond);
 BENCHMARK(BM_TerrainFieldSamples)->Unit(benchmark::kMicrosecond);
+BENCHMARK(BM_Relief)
+    ->ArgNames({"relief", "gradient", "batch"})
+    ->ArgsProduct({{0, 1, 2, 3}, {0, 1}, {0, 1}})
+    ->Unit(benchmark::kMicrosecond);
 BENCHMARK(BM_Heightfield)->ArgsProduct({{2048}, {1, 2}})->MeasureProcessCPUTime()->UseRealTime()->Unit(benchmark::kMillisecond);

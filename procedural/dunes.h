@@ -8,6 +8,7 @@
 #pragma once
 #include <glm/vec2.hpp>
 
+#include <cstddef>
 #include <cstdint>
 
 #include "procedural/fractal.h"
@@ -62,33 +63,49 @@ TESSERA_NOISE_INLINE void profile(float phase, float a, float& value, float& slo
     value = rising ? s : 1.0f - s;
     slope = rising ? ds : -ds;
 }
-}  // namespace dune_detail
 
+// The two noises of a dune field: the crest bending and the crest height.
+inline Fractal bend_fractal(const Dunes& d) { return {3, 2.0f, 0.5f, d.seed}; }
+inline Fractal crest_fractal(const Dunes& d) { return {2, 2.0f, 0.5f, d.seed ^ 0x7f4a7c15u}; }
 
-// The relief and its gradient: the chain rule through each wave's phase and each noise's scale.
+// The relief at p from its two noises, `warp` = fbm(p * bend_scale) and `height` =
+// fbm(p * height_scale): what dunes() and the batch loop of dunes_batch both run.
 template <class Lattice>
-TESSERA_NOISE_INLINE Noise2 dunes(glm::vec2 p, const Dunes& d, const DuneWaves<Lattice>& w) {
-    const Fractal bend{3, 2.0f, 0.5f, d.seed};
-    const Fractal crest{2, 2.0f, 0.5f, d.seed ^ 0x7f4a7c15u};
-    // Noise scales with the wavelength, so sinuosity and crest variation do too.
-    const Noise2 warp = fbm(p * w.bend_scale, bend, w.bend_lattice);
+TESSERA_NOISE_INLINE Noise2 relief(glm::vec2 p, const Dunes& d, const DuneWaves<Lattice>& w, Noise2 warp,
+                                   Noise2 height) {
     const float phase = w.crest.x * p.x + w.crest.y * p.y + d.sinuosity * warp.value;
     const glm::vec2 phase_gradient = w.crest + d.sinuosity * (w.bend_scale * warp.gradient);
     float shape, shape_slope;
-    dune_detail::profile(phase, 1.0f - d.lee_fraction, shape, shape_slope);
-    const Noise2 height = fbm(p * w.height_scale, crest, w.height_lattice);
+    profile(phase, 1.0f - d.lee_fraction, shape, shape_slope);
     const float scale = 0.75f + 0.25f * height.value;
     const glm::vec2 scale_gradient = 0.25f * (w.height_scale * height.gradient);
 
     // Ripples: the same asymmetric profile at a short wavelength, straight across the wind.
     float ripple, ripple_slope;
-    dune_detail::profile(w.ripple.x * p.x + w.ripple.y * p.y, 0.7f, ripple, ripple_slope);
+    profile(w.ripple.x * p.x + w.ripple.y * p.y, 0.7f, ripple, ripple_slope);
 
     return {shape * scale + d.ripple_amplitude * ripple,
             (shape_slope * scale) * phase_gradient + shape * scale_gradient +
                 (d.ripple_amplitude * ripple_slope) * w.ripple};
 }
+}  // namespace dune_detail
+
+// The relief and its gradient: the chain rule through each wave's phase and each noise's scale.
+// Noise scales with the wavelength, so sinuosity and crest variation do too.
+template <class Lattice>
+TESSERA_NOISE_INLINE Noise2 dunes(glm::vec2 p, const Dunes& d, const DuneWaves<Lattice>& w) {
+    return dune_detail::relief(p, d, w, fbm(p * w.bend_scale, dune_detail::bend_fractal(d), w.bend_lattice),
+                               fbm(p * w.height_scale, dune_detail::crest_fractal(d), w.height_lattice));
+}
 
 TESSERA_NOISE_INLINE Noise2 dunes(glm::vec2 p, const Dunes& d) { return dunes(p, d, dune_waves(d)); }
+
+// dunes() over n points (x[i], y[i]), vectorised over the points (the two noises through
+// fbm_batch, then the profiles): point i gets the single call's value and gradient bit for
+// bit. With dx and dy null (both) only the values are computed.
+void dunes_batch(const Dunes& d, const DuneWaves<OpenLattice>& w, size_t n, const float* x, const float* y,
+                 float* value, float* dx = nullptr, float* dy = nullptr);
+void dunes_batch(const Dunes& d, const DuneWaves<TorusLattice>& w, size_t n, const float* x, const float* y,
+                 float* value, float* dx = nullptr, float* dy = nullptr);
 
 }  // namespace tessera::procedural

@@ -5,6 +5,7 @@
 
 #include "procedural/fractal_batch.h"
 
+#include <algorithm>
 #include <cmath>
 #include <stdexcept>
 #include <string>
@@ -24,16 +25,6 @@ void ImplicitField::sample_batch(size_t n, const float* x, const float* y, const
         gx[i] = s.gradient.x;
         gy[i] = s.gradient.y;
         gz[i] = s.gradient.z;
-    }
-}
-
-void ImplicitField::value_batch_by_sampling(size_t n, const float* x, const float* y,
-                                            const float* z, float* value) const {
-    constexpr size_t kBlock = 256;
-    float gx[kBlock], gy[kBlock], gz[kBlock];
-    for (size_t start = 0; start < n; start += kBlock) {
-        const size_t count = n - start < kBlock ? n - start : kBlock;
-        sample_batch(count, x + start, y + start, z + start, value + start, gx, gy, gz);
     }
 }
 
@@ -113,33 +104,54 @@ TerrainField::TerrainField(const TerrainParams& params) : p_(params) {
         throw std::invalid_argument("terrain: frequency must be at most 1e6 and amplitude and base within +-1e18");
 }
 
-void TerrainField::value_batch(size_t n, const float* x, const float* y, const float* z,
-                               float* value) const {
-    value_batch_by_sampling(n, x, y, z, value);  // fBm relief: vectorised with gradients
+void TerrainField::relief_batch(size_t n, const float* qx, const float* qz, float* r, float* dqx,
+                                float* dqz) const {
+    switch (p_.relief) {
+        case Relief::fbm: fbm_batch(p_.fractal, OpenLattice{}, n, qx, qz, r, dqx, dqz); break;
+        case Relief::ridged: ridged_batch(p_.fractal, 1.0f, OpenLattice{}, n, qx, qz, r, dqx, dqz); break;
+        case Relief::warped: domain_warp_batch(p_.fractal, p_.warp, OpenLattice{}, n, qx, qz, r, dqx, dqz); break;
+        case Relief::dunes: dunes_batch(p_.dunes, dune_waves(p_.dunes), n, qx, qz, r, dqx, dqz); break;
+    }
 }
 
-void TerrainField::sample_batch(size_t n, const float* __restrict x, const float* __restrict y,
-                                const float* __restrict z, float* __restrict value,
-                                float* __restrict gx, float* __restrict gy,
-                                float* __restrict gz) const {
-    if (p_.relief == Relief::fbm) {
-        fbm_batch(p_.fractal, p_.frequency, n, x, z, value, gx, gz);
-        const float half = 0.5f * p_.amplitude;
-        for (size_t i = 0; i < n; ++i) {
-            value[i] = p_.base + p_.amplitude * (0.5f * value[i] + 0.5f) - y[i];
-            gx[i] *= half;
-            gy[i] = -1.0f;
-            gz[i] *= half;
+// height() over blocks of points: the lattice coordinates, the relief in one batch, then each
+// point finished as height() finishes it, so every value and gradient is height()'s.
+template <bool kGradient>
+void TerrainField::heights(size_t n, const float* x, const float* y, const float* z, float* value,
+                           float* gx, float* gz) const {
+    constexpr size_t kBlock = 64;
+    float qx[kBlock] = {}, qz[kBlock] = {};  // (initialised: GCC cannot see the loop below fill them)
+    float r[kBlock], rx[kBlock], rz[kBlock];
+    for (size_t start = 0; start < n; start += kBlock) {
+        const size_t m = std::min(kBlock, n - start);
+        for (size_t i = 0; i < m; ++i) {
+            const glm::vec2 q = glm::vec2(x[start + i], z[start + i]) * p_.frequency;
+            qx[i] = q.x;
+            qz[i] = q.y;
         }
-        return;
+        relief_batch(m, qx, qz, r, kGradient ? rx : nullptr, kGradient ? rz : nullptr);
+        for (size_t i = 0; i < m; ++i) {
+            Noise2 relief{r[i], glm::vec2(0.0f)};
+            if constexpr (kGradient) relief.gradient = {rx[i], rz[i]};
+            const Noise2 h = height_of_relief(relief);
+            value[start + i] = h.value - y[start + i];
+            if constexpr (kGradient) {
+                gx[start + i] = h.gradient.x;
+                gz[start + i] = h.gradient.y;
+            }
+        }
     }
-    for (size_t i = 0; i < n; ++i) {
-        const Noise2 h = height(x[i], z[i]);
-        value[i] = h.value - y[i];
-        gx[i] = h.gradient.x;
-        gy[i] = -1.0f;
-        gz[i] = h.gradient.y;
-    }
+}
+
+void TerrainField::value_batch(size_t n, const float* x, const float* y, const float* z,
+                               float* value) const {
+    heights<false>(n, x, y, z, value, nullptr, nullptr);
+}
+
+void TerrainField::sample_batch(size_t n, const float* x, const float* y, const float* z, float* value,
+                                float* gx, float* gy, float* gz) const {
+    heights<true>(n, x, y, z, value, gx, gz);
+    for (size_t i = 0; i < n; ++i) gy[i] = -1.0f;
 }
 
 // --- NoiseVolumeField -----------------------------------------------------------------------
@@ -151,22 +163,47 @@ NoiseVolumeField::NoiseVolumeField(const VolumeParams& params) : p_(params) {
                                     "base finite");
 }
 
-void NoiseVolumeField::value_batch(size_t n, const float* x, const float* y, const float* z,
-                                   float* value) const {
-    value_batch_by_sampling(n, x, y, z, value);
+// sample() over blocks of points: the lattice coordinates, fbm_batch, then each point finished
+// as sample() finishes it, so every value and gradient is sample()'s.
+template <bool kGradient>
+void NoiseVolumeField::samples(size_t n, const float* x, const float* y, const float* z, float* value,
+                               float* gx, float* gy, float* gz) const {
+    constexpr size_t kBlock = 64;
+    float qx[kBlock] = {}, qy[kBlock] = {}, qz[kBlock] = {};  // (initialised: GCC cannot see the loop below fill them)
+    float r[kBlock], rx[kBlock], ry[kBlock], rz[kBlock];
+    for (size_t start = 0; start < n; start += kBlock) {
+        const size_t m = std::min(kBlock, n - start);
+        for (size_t i = 0; i < m; ++i) {
+            const glm::vec3 q = glm::vec3(x[start + i], y[start + i], z[start + i]) * p_.frequency;
+            qx[i] = q.x;
+            qy[i] = q.y;
+            qz[i] = q.z;
+        }
+        fbm_batch(p_.fractal, m, qx, qy, qz, r, kGradient ? rx : nullptr, kGradient ? ry : nullptr,
+                  kGradient ? rz : nullptr);
+        for (size_t i = 0; i < m; ++i) {
+            Noise3 noise{r[i], glm::vec3(0.0f)};
+            if constexpr (kGradient) noise.gradient = {rx[i], ry[i], rz[i]};
+            const FieldSample s =
+                sample_of(glm::vec3(x[start + i], y[start + i], z[start + i]), noise);
+            value[start + i] = s.value;
+            if constexpr (kGradient) {
+                gx[start + i] = s.gradient.x;
+                gy[start + i] = s.gradient.y;
+                gz[start + i] = s.gradient.z;
+            }
+        }
+    }
 }
 
-void NoiseVolumeField::sample_batch(size_t n, const float* __restrict x, const float* __restrict y,
-                                    const float* __restrict z, float* __restrict value,
-                                    float* __restrict gx, float* __restrict gy,
-                                    float* __restrict gz) const {
-    fbm_batch(p_.fractal, p_.frequency, n, x, y, z, value, gx, gy, gz);
-    for (size_t i = 0; i < n; ++i) {
-        value[i] = p_.base + p_.amplitude * value[i] - y[i];
-        gx[i] *= p_.amplitude;
-        gy[i] = p_.amplitude * gy[i] - 1.0f;
-        gz[i] *= p_.amplitude;
-    }
+void NoiseVolumeField::value_batch(size_t n, const float* x, const float* y, const float* z,
+                                   float* value) const {
+    samples<false>(n, x, y, z, value, nullptr, nullptr, nullptr);
+}
+
+void NoiseVolumeField::sample_batch(size_t n, const float* x, const float* y, const float* z, float* value,
+                                    float* gx, float* gy, float* gz) const {
+    samples<true>(n, x, y, z, value, gx, gy, gz);
 }
 
 }  // namespace tessera::procedural

@@ -32,18 +32,13 @@ public:
     virtual FieldSample sample(glm::vec3 p) const = 0;
     glm::vec3 gradient(glm::vec3 p) const { return sample(p).gradient; }
 
-    // n points (x[i], y[i], z[i]); writes value[i]. The base versions loop over value() and
+    // n points (x[i], y[i], z[i]); writes value[i] (and the gradient), what value() and
+    // sample() give at each point, bit for bit. The base versions loop over value() and
     // sample(); the fields below override them with vectorised loops.
     virtual void value_batch(size_t n, const float* x, const float* y, const float* z,
                              float* value) const;
     virtual void sample_batch(size_t n, const float* x, const float* y, const float* z,
                               float* value, float* gx, float* gy, float* gz) const;
-
-protected:
-    // value_batch for fields whose only vectorised loop also computes the gradient: runs
-    // sample_batch in blocks with scratch gradient storage.
-    void value_batch_by_sampling(size_t n, const float* x, const float* y, const float* z,
-                                 float* value) const;
 };
 
 // A 3-D noise of 16 sines with wave vectors from the
@@ -112,12 +107,12 @@ public:
         const glm::vec2 q = glm::vec2(x, z) * p_.frequency;
         Noise2 r;
         switch (p_.relief) {
-            case Relief::fbm: r = fbm(q, p_.fractal); r.value = 0.5f * r.value + 0.5f; r.gradient *= 0.5f; break;
+            case Relief::fbm: r = fbm(q, p_.fractal); break;
             case Relief::ridged: r = ridged(q, p_.fractal); break;
-            case Relief::warped: r = domain_warp(q, p_.fractal, p_.warp); r.value = 0.5f * r.value + 0.5f; r.gradient *= 0.5f; break;
+            case Relief::warped: r = domain_warp(q, p_.fractal, p_.warp); break;
             case Relief::dunes: r = dunes(q, p_.dunes); break;
         }
-        return {p_.base + p_.amplitude * r.value, (p_.amplitude * p_.frequency) * r.gradient};
+        return height_of_relief(r);
     }
     float value(glm::vec3 p) const override { return height(p.x, p.z).value - p.y; }
     FieldSample sample(glm::vec3 p) const override {
@@ -132,6 +127,21 @@ public:
     const TerrainParams& params() const { return p_; }
 
 private:
+    // h from the relief r at q = (x, z) * frequency (fbm and warped relief map [-1, 1] to
+    // [0, 1]): height() and the batch forms both finish with it.
+    TESSERA_NOISE_INLINE Noise2 height_of_relief(Noise2 r) const {
+        if (p_.relief == Relief::fbm || p_.relief == Relief::warped) {
+            r.value = 0.5f * r.value + 0.5f;
+            r.gradient *= 0.5f;
+        }
+        return {p_.base + p_.amplitude * r.value, (p_.amplitude * p_.frequency) * r.gradient};
+    }
+    // The relief over n points q, through the batch form of fractal_batch.h or
+    // dunes.h; dq/dx and dq/dz null: values only.
+    void relief_batch(size_t n, const float* qx, const float* qz, float* r, float* dqx, float* dqz) const;
+    template <bool kGradient>
+    void heights(size_t n, const float* x, const float* y, const float* z, float* value, float* gx, float* gz) const;
+
     TerrainParams p_;
 };
 
@@ -148,11 +158,7 @@ class NoiseVolumeField final : public ImplicitField {
 public:
     explicit NoiseVolumeField(const VolumeParams& params);
     float value(glm::vec3 p) const override { return sample(p).value; }
-    FieldSample sample(glm::vec3 p) const override {
-        const Noise3 n = fbm(p * p_.frequency, p_.fractal);
-        return {p_.base + p_.amplitude * n.value - p.y,
-                (p_.amplitude * p_.frequency) * n.gradient - glm::vec3(0.0f, 1.0f, 0.0f)};
-    }
+    FieldSample sample(glm::vec3 p) const override { return sample_of(p, fbm(p * p_.frequency, p_.fractal)); }
     void value_batch(size_t n, const float* x, const float* y, const float* z,
                      float* value) const override;
     void sample_batch(size_t n, const float* x, const float* y, const float* z, float* value,
@@ -161,6 +167,16 @@ public:
     const VolumeParams& params() const { return p_; }
 
 private:
+    // f and its gradient at p from n = fbm(p * frequency): sample() and the batch forms both
+    // finish with it.
+    TESSERA_NOISE_INLINE FieldSample sample_of(glm::vec3 p, Noise3 n) const {
+        return {p_.base + p_.amplitude * n.value - p.y,
+                (p_.amplitude * p_.frequency) * n.gradient - glm::vec3(0.0f, 1.0f, 0.0f)};
+    }
+    template <bool kGradient>
+    void samples(size_t n, const float* x, const float* y, const float* z, float* value, float* gx, float* gy,
+                 float* gz) const;
+
     VolumeParams p_;
 };
 

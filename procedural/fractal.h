@@ -37,34 +37,98 @@ inline float fractal_amplitude(const Fractal& f) {
 // lattice repeats every period * lacunarity^i of its own cells (finer()), the same distance in
 // input units, and the whole sum wraps.
 struct OpenLattice {
-    Noise2 value(glm::vec2 p, uint32_t seed) const { return value_noise(p, seed); }
-    Noise2 gradient(glm::vec2 p, uint32_t seed) const { return gradient_noise(p, seed); }
+    // An octave's noise at p with its seed already avalanched (noise_detail::seed_key), so that
+    // batch loops make the key once per octave; value() and gradient() are these with the seed.
+    TESSERA_NOISE_INLINE Noise2 value_at(uint32_t key, glm::vec2 p) const {
+        using namespace noise_detail;
+        return value2(key, axis(p.x, kPrimeX), axis(p.y, kPrimeY));
+    }
+    TESSERA_NOISE_INLINE Noise2 gradient_at(uint32_t key, glm::vec2 p) const {
+        using namespace noise_detail;
+        return gradient2(key, axis(p.x, kPrimeX), axis(p.y, kPrimeY));
+    }
+    Noise2 value(glm::vec2 p, uint32_t seed) const { return value_at(noise_detail::seed_key(seed), p); }
+    Noise2 gradient(glm::vec2 p, uint32_t seed) const { return gradient_at(noise_detail::seed_key(seed), p); }
     OpenLattice finer(int) const { return *this; }
 };
 
 struct TorusLattice {
     glm::ivec2 period;  // cells, > 0 on both axes
-    Noise2 value(glm::vec2 p, uint32_t seed) const { return value_noise_periodic(p, period, seed); }
-    Noise2 gradient(glm::vec2 p, uint32_t seed) const { return gradient_noise_periodic(p, period, seed); }
+    TESSERA_NOISE_INLINE Noise2 value_at(uint32_t key, glm::vec2 p) const {
+        using namespace noise_detail;
+        return value2(key, periodic_axis(p.x, period.x, kPrimeX), periodic_axis(p.y, period.y, kPrimeY));
+    }
+    TESSERA_NOISE_INLINE Noise2 gradient_at(uint32_t key, glm::vec2 p) const {
+        using namespace noise_detail;
+        return gradient2(key, periodic_axis(p.x, period.x, kPrimeX), periodic_axis(p.y, period.y, kPrimeY));
+    }
+    Noise2 value(glm::vec2 p, uint32_t seed) const { return value_at(noise_detail::seed_key(seed), p); }
+    Noise2 gradient(glm::vec2 p, uint32_t seed) const { return gradient_at(noise_detail::seed_key(seed), p); }
     TorusLattice finer(int lacunarity) const { return {period * lacunarity}; }
 };
+
+// One octave of each sum at one point: what the single-point functions below and the batch
+// loops of fractal_batch.cpp both run, so a batch gives each point the single call's bits.
+namespace fractal_detail {
+
+// fBm: amplitude times the octave's noise; its gradient scaled by the chain rule.
+template <class Noise>
+TESSERA_NOISE_INLINE void fbm_octave(Noise& sum, Noise n, float amplitude, float frequency) {
+    sum.value += amplitude * n.value;
+    sum.gradient += (amplitude * frequency) * n.gradient;
+}
+
+// The ridged multifractal's running sum and the weight the next octave's signal gets.
+struct RidgedSum {
+    float value = 0.0f;
+    float weight = 1.0f;
+    glm::vec2 gradient{0.0f};
+    glm::vec2 weight_gradient{0.0f};
+};
+
+TESSERA_NOISE_INLINE void ridged_octave(RidgedSum& s, Noise2 n, float amplitude, float frequency,
+                                        float offset) {
+    const float ridge = offset - (n.value < 0.0f ? -n.value : n.value);
+    const glm::vec2 ridge_gradient = (n.value < 0.0f ? frequency : -frequency) * n.gradient;
+    const float signal = ridge * ridge * s.weight;
+    const glm::vec2 signal_gradient =
+        (2.0f * ridge * s.weight) * ridge_gradient + (ridge * ridge) * s.weight_gradient;
+    s.value += amplitude * signal;
+    s.gradient += amplitude * signal_gradient;
+    // Next weight = clamp(2 * signal, 0, 1); its gradient vanishes where it is clamped.
+    const float w = 2.0f * signal;
+    const bool inside = w > 0.0f && w < 1.0f;
+    s.weight = w < 0.0f ? 0.0f : (w > 1.0f ? 1.0f : w);
+    s.weight_gradient = inside ? 2.0f * signal_gradient : glm::vec2(0.0f);
+}
+
+// The domain warp's result from its three fBm: h at the warped point, and J^T grad h.
+TESSERA_NOISE_INLINE Noise2 warp_chain(Noise2 h, Noise2 qx, Noise2 qy, float amount) {
+    return {h.value, h.gradient + amount * (h.gradient.x * qx.gradient + h.gradient.y * qy.gradient)};
+}
+
+// The two fBm of a domain warp, independent of the warped one's.
+inline Fractal warp_x(const Fractal& f) { return {f.octaves, f.lacunarity, f.gain, f.seed ^ 0x51ed270bu}; }
+inline Fractal warp_y(const Fractal& f) { return {f.octaves, f.lacunarity, f.gain, f.seed ^ 0x2c1b3c6du}; }
+// The offset of the second warp field's sample point (so the two are not the same field).
+inline constexpr glm::vec2 kWarpYOffset{5.2f, 1.3f};
+
+}  // namespace fractal_detail
 
 // fBm of 2-D value noise, in [-1, 1], on the given lattice (a TorusLattice needs a whole-number
 // lacunarity).
 template <class Lattice>
 TESSERA_NOISE_INLINE Noise2 fbm(glm::vec2 p, const Fractal& f, Lattice lattice) {
-    float value = 0.0f, amplitude = 1.0f, frequency = 1.0f;
-    glm::vec2 gradient(0.0f);
+    Noise2 sum{0.0f, glm::vec2(0.0f)};
+    float amplitude = 1.0f, frequency = 1.0f;
     for (int i = 0; i < f.octaves; ++i) {
-        const Noise2 n = lattice.value(p * frequency, octave_seed(f.seed, i));
-        value += amplitude * n.value;
-        gradient += (amplitude * frequency) * n.gradient;
+        fractal_detail::fbm_octave(sum, lattice.value(p * frequency, octave_seed(f.seed, i)), amplitude, frequency);
         amplitude *= f.gain;
         frequency *= f.lacunarity;
         lattice = lattice.finer(int(f.lacunarity));
     }
     const float norm = 1.0f / fractal_amplitude(f);
-    return {value * norm, gradient * norm};
+    return {sum.value * norm, sum.gradient * norm};
 }
 
 TESSERA_NOISE_INLINE Noise2 fbm(glm::vec2 p, const Fractal& f) { return fbm(p, f, OpenLattice{}); }
@@ -76,17 +140,15 @@ TESSERA_NOISE_INLINE Noise2 fbm_periodic(glm::vec2 p, glm::ivec2 period, const F
 
 // fBm of 3-D value noise, in [-1, 1] (volumes with overhangs; fog density).
 TESSERA_NOISE_INLINE Noise3 fbm(glm::vec3 p, const Fractal& f) {
-    float value = 0.0f, amplitude = 1.0f, frequency = 1.0f;
-    glm::vec3 gradient(0.0f);
+    Noise3 sum{0.0f, glm::vec3(0.0f)};
+    float amplitude = 1.0f, frequency = 1.0f;
     for (int i = 0; i < f.octaves; ++i) {
-        const Noise3 n = value_noise(p * frequency, octave_seed(f.seed, i));
-        value += amplitude * n.value;
-        gradient += (amplitude * frequency) * n.gradient;
+        fractal_detail::fbm_octave(sum, value_noise(p * frequency, octave_seed(f.seed, i)), amplitude, frequency);
         amplitude *= f.gain;
         frequency *= f.lacunarity;
     }
     const float norm = 1.0f / fractal_amplitude(f);
-    return {value * norm, gradient * norm};
+    return {sum.value * norm, sum.gradient * norm};
 }
 
 // Ridged multifractal (Musgrave): each octave is (offset - |noise|)^2, weighted by the previous
@@ -97,29 +159,17 @@ TESSERA_NOISE_INLINE Noise3 fbm(glm::vec3 p, const Fractal& f) {
 // depends only on that octave's noise at the point, so on a TorusLattice the sum wraps too.
 template <class Lattice>
 TESSERA_NOISE_INLINE Noise2 ridged(glm::vec2 p, const Fractal& f, Lattice lattice, float offset = 1.0f) {
-    float value = 0.0f, amplitude = 1.0f, frequency = 1.0f;
-    float weight = 1.0f;
-    glm::vec2 gradient(0.0f), weight_gradient(0.0f);
+    fractal_detail::RidgedSum sum;
+    float amplitude = 1.0f, frequency = 1.0f;
     for (int i = 0; i < f.octaves; ++i) {
-        const Noise2 n = lattice.gradient(p * frequency, octave_seed(f.seed, i));
-        const float ridge = offset - (n.value < 0.0f ? -n.value : n.value);
-        const glm::vec2 ridge_gradient = (n.value < 0.0f ? frequency : -frequency) * n.gradient;
-        const float signal = ridge * ridge * weight;
-        const glm::vec2 signal_gradient =
-            (2.0f * ridge * weight) * ridge_gradient + (ridge * ridge) * weight_gradient;
-        value += amplitude * signal;
-        gradient += amplitude * signal_gradient;
-        // Next weight = clamp(2 * signal, 0, 1); its gradient vanishes where it is clamped.
-        const float w = 2.0f * signal;
-        const bool inside = w > 0.0f && w < 1.0f;
-        weight = w < 0.0f ? 0.0f : (w > 1.0f ? 1.0f : w);
-        weight_gradient = inside ? 2.0f * signal_gradient : glm::vec2(0.0f);
+        fractal_detail::ridged_octave(sum, lattice.gradient(p * frequency, octave_seed(f.seed, i)), amplitude,
+                                      frequency, offset);
         amplitude *= f.gain;
         frequency *= f.lacunarity;
         lattice = lattice.finer(int(f.lacunarity));
     }
     const float norm = 1.0f / fractal_amplitude(f);
-    return {value * norm, gradient * norm};
+    return {sum.value * norm, sum.gradient * norm};
 }
 
 TESSERA_NOISE_INLINE Noise2 ridged(glm::vec2 p, const Fractal& f, float offset = 1.0f) {
@@ -131,13 +181,11 @@ TESSERA_NOISE_INLINE Noise2 ridged(glm::vec2 p, const Fractal& f, float offset =
 // wrap, so p + period lands on the same warped point plus a period: the warp wraps too.
 template <class Lattice>
 TESSERA_NOISE_INLINE Noise2 domain_warp(glm::vec2 p, const Fractal& f, float amount, Lattice lattice) {
-    Fractal fx = f, fy = f;
-    fx.seed = f.seed ^ 0x51ed270bu;
-    fy.seed = f.seed ^ 0x2c1b3c6du;
-    const Noise2 qx = fbm(p, fx, lattice);
-    const Noise2 qy = fbm(p + glm::vec2(5.2f, 1.3f), fy, lattice);
+    using namespace fractal_detail;
+    const Noise2 qx = fbm(p, warp_x(f), lattice);
+    const Noise2 qy = fbm(p + kWarpYOffset, warp_y(f), lattice);
     const Noise2 h = fbm(p + amount * glm::vec2(qx.value, qy.value), f, lattice);
-    return {h.value, h.gradient + amount * (h.gradient.x * qx.gradient + h.gradient.y * qy.gradient)};
+    return warp_chain(h, qx, qy, amount);
 }
 
 TESSERA_NOISE_INLINE Noise2 domain_warp(glm::vec2 p, const Fractal& f, float amount) {

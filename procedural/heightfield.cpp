@@ -27,21 +27,19 @@ void check(const HeightfieldParams& p) {
         throw std::invalid_argument("heightfield warp must be finite and dune wavelengths positive");
 }
 
-// One row of the ridged, warped or dune relief at lattice rows v, columns xs: one scalar call
-// per texel (these sums do not vectorise the way fbm_batch does). The lattice and the dune waves
-// are either both open or both repeating over the map.
+// One row of relief at lattice rows v, columns xs (ys: v repeated), through the batch forms,
+// vectorised over the row. The lattice and the dune waves are either both open or both
+// repeating over the map.
 template <class Lattice>
 void relief_row(const HeightfieldParams& p, Lattice lattice, const DuneWaves<Lattice>& waves,
-                int width, const float* xs, float v, float* h) {
-    for (int x = 0; x < width; ++x) {
-        const glm::vec2 q(xs[x], v);
-        switch (p.relief) {
-            case Relief::ridged: h[x] = ridged(q, p.fractal, lattice).value; break;
-            case Relief::warped: h[x] = 0.5f * domain_warp(q, p.fractal, p.warp, lattice).value + 0.5f; break;
-            case Relief::dunes: h[x] = dunes(q, p.dunes, waves).value; break;
-            case Relief::fbm: break;
-        }
+                int width, const float* xs, const float* ys, float* h) {
+    switch (p.relief) {
+        case Relief::fbm: fbm_batch(p.fractal, lattice, width, xs, ys, h); break;
+        case Relief::ridged: ridged_batch(p.fractal, 1.0f, lattice, width, xs, ys, h); return;
+        case Relief::warped: domain_warp_batch(p.fractal, p.warp, lattice, width, xs, ys, h); break;
+        case Relief::dunes: dunes_batch(p.dunes, waves, width, xs, ys, h); return;
     }
+    for (int x = 0; x < width; ++x) h[x] = 0.5f * h[x] + 0.5f;  // fbm and warped: [-1, 1] to [0, 1]
 }
 }  // namespace
 
@@ -58,25 +56,14 @@ Grid generate_heightfield(int width, int height, const HeightfieldParams& p) {
     const DuneWaves<TorusLattice> tiled_waves = dune_waves(p.dunes, period);
     const DuneWaves<OpenLattice> open_waves = dune_waves(p.dunes);
     tbb::parallel_for(tbb::blocked_range<int>(0, height, 4), [&](const tbb::blocked_range<int>& rows) {
-        std::vector<float> xs(width), ys(width), dx(width), dy(width);
+        std::vector<float> xs(width), ys(width);
         for (int x = 0; x < width; ++x) xs[x] = float(x) * sx;
         for (int y = rows.begin(); y < rows.end(); ++y) {
-            float* h = out.row(y);
-            const float v = float(y) * sy;
-            if (p.relief == Relief::fbm) {
-                std::fill(ys.begin(), ys.end(), v);
-                if (p.tileable)
-                    fbm_periodic_batch(p.fractal, period, 1.0f, width, xs.data(),
-                                       ys.data(), h, dx.data(), dy.data());
-                else
-                    fbm_batch(p.fractal, 1.0f, width, xs.data(), ys.data(), h, dx.data(), dy.data());
-                for (int x = 0; x < width; ++x) h[x] = 0.5f * h[x] + 0.5f;
-                continue;
-            }
+            std::fill(ys.begin(), ys.end(), float(y) * sy);
             if (p.tileable)
-                relief_row(p, TorusLattice{period}, tiled_waves, width, xs.data(), v, h);
+                relief_row(p, TorusLattice{period}, tiled_waves, width, xs.data(), ys.data(), out.row(y));
             else
-                relief_row(p, OpenLattice{}, open_waves, width, xs.data(), v, h);
+                relief_row(p, OpenLattice{}, open_waves, width, xs.data(), ys.data(), out.row(y));
         }
     });
     return out;

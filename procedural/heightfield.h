@@ -1,7 +1,7 @@
 // Heightfield terrain as an image: h(x, y) over a width x height grid from the reliefs of
 // fractal.h (fBm, ridged multifractal, domain-warped fBm, dunes), parallel over rows with
-// oneTBB and vectorised over x for fBm (fractal_batch.h). Deterministic from the seed whatever
-// the thread count: every cell is a pure function of its coordinates.
+// oneTBB and vectorised over x (the batch forms of fractal_batch.h and dunes.h). Deterministic
+// from the seed whatever the thread count: every cell is a pure function of its coordinates.
 #pragma once
 #include <cstdint>
 

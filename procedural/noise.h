@@ -217,11 +217,11 @@ TESSERA_NOISE_INLINE Noise3 gradient_noise(glm::vec3 p, uint32_t seed) {
 }
 
 // Batch forms over n points in structure-of-arrays layout (SIMD over points); out[i] equals the
-// single call at point i. All outputs are required (no null checks in the loop), so the loop
-// stays branch-free and vectorises.
+// single call at point i, bit for bit. With dx, dy and dz null (all three) only the values are
+// computed; the choice is made once per call, so the point loop stays branch-free.
 void value_noise_batch(uint32_t seed, size_t n, const float* x, const float* y, const float* z,
-                       float* value, float* dx, float* dy, float* dz);
+                       float* value, float* dx = nullptr, float* dy = nullptr, float* dz = nullptr);
 void gradient_noise_batch(uint32_t seed, size_t n, const float* x, const float* y, const float* z,
-                          float* value, float* dx, float* dy, float* dz);
+                          float* value, float* dx = nullptr, float* dy = nullptr, float* dz = nullptr);
 
 }  // namespace tessera::procedural

@@ -3,10 +3,13 @@
 // noise matches its formula evaluated literally.
 #include <gtest/gtest.h>
 
+#include <bit>
 #include <cmath>
 #include <functional>
+#include <memory>
 #include <vector>
 
+#include "procedural/dunes.h"
 #include "procedural/field.h"
 #include "procedural/fractal.h"
 #include "procedural/fractal_batch.h"
@@ -222,24 +225,76 @@ TEST(ProceduralNoise, BatchesMatchSinglePoints) {
     for (auto p : ps) x.push_back(p.x), y.push_back(p.y), z.push_back(p.z);
     std::vector<float> v(ps.size()), gx(ps.size()), gy(ps.size()), gz(ps.size());
 
-    tp::value_noise_batch(4, ps.size(), x.data(), y.data(), z.data(), v.data(), gx.data(), gy.data(), gz.data());
-    for (size_t i = 0; i < ps.size(); ++i) {
-        const tp::Noise3 s = tp::value_noise(ps[i], 4);
-        ASSERT_NEAR(v[i], s.value, 1e-6f);
-        ASSERT_NEAR(gy[i], s.gradient.y, 1e-5f);
+    // Bit for bit, with gradients and values only; and the 3-D fBm (lacunarity 2.5).
+    const auto same = [](float a, float b) { return std::bit_cast<uint32_t>(a) == std::bit_cast<uint32_t>(b); };
+    const tp::Fractal f{4, 2.5f, 0.5f, 1};
+    for (int kind = 0; kind < 3; ++kind) {
+        std::vector<float> values_only(ps.size());
+        const auto run = [&](float* value, float* dx, float* dy, float* dz) {
+            if (kind == 0) tp::value_noise_batch(4, ps.size(), x.data(), y.data(), z.data(), value, dx, dy, dz);
+            if (kind == 1) tp::gradient_noise_batch(4, ps.size(), x.data(), y.data(), z.data(), value, dx, dy, dz);
+            if (kind == 2) tp::fbm_batch(f, ps.size(), x.data(), y.data(), z.data(), value, dx, dy, dz);
+        };
+        run(v.data(), gx.data(), gy.data(), gz.data());
+        run(values_only.data(), nullptr, nullptr, nullptr);
+        for (size_t i = 0; i < ps.size(); ++i) {
+            const tp::Noise3 s = kind == 0 ? tp::value_noise(ps[i], 4) : kind == 1 ? tp::gradient_noise(ps[i], 4) : tp::fbm(ps[i], f);
+            ASSERT_TRUE(same(v[i], s.value) && same(values_only[i], s.value)) << kind << " " << i;
+            ASSERT_TRUE(same(gx[i], s.gradient.x) && same(gy[i], s.gradient.y) && same(gz[i], s.gradient.z)) << kind << " " << i;
+        }
     }
-    tp::gradient_noise_batch(4, ps.size(), x.data(), y.data(), z.data(), v.data(), gx.data(), gy.data(), gz.data());
-    for (size_t i = 0; i < ps.size(); ++i) {
-        const tp::Noise3 s = tp::gradient_noise(ps[i], 4);
-        ASSERT_NEAR(v[i], s.value, 1e-6f);
-        ASSERT_NEAR(gz[i], s.gradient.z, 1e-5f);
-    }
-    const tp::Fractal f{6, 2.0f, 0.5f, 1};
-    tp::fbm_batch(f, 0.25f, ps.size(), x.data(), y.data(), v.data(), gx.data(), gy.data());
-    for (size_t i = 0; i < ps.size(); ++i) {
-        const tp::Noise2 s = tp::fbm(glm::vec2(x[i], y[i]) * 0.25f, f);
-        ASSERT_NEAR(v[i], s.value, 1e-5f);
-        ASSERT_NEAR(gx[i], 0.25f * s.gradient.x, 1e-4f);
+}
+
+// The 2-D fractal batches are the single-point sums in lanes: every relief, on the open and on a
+// repeating lattice, with and without gradients, over a count that leaves partial blocks and
+// points on both sides of the origin, equals the single call bit for bit (a lacunarity that is
+// not a power of two, so each octave's scaling rounds).
+TEST(ProceduralNoise, ReliefBatchesEqualSinglePointsBitForBit) {
+    const auto ps = points(150, 40);
+    const size_t n = ps.size();
+    std::vector<float> x, y;
+    for (auto p : ps) x.push_back(p.x), y.push_back(p.y);
+    x[0] = y[0] = 0.0f;  // a lattice point
+    x[1] = -1.0f;
+    const tp::Fractal f{5, 3.0f, 0.45f, 9};
+    const glm::ivec2 period(7, 5);
+    tp::Dunes d;
+    d.wind = glm::vec2(0.6f, -0.8f);
+    d.wavelength = 3.5f;
+    d.seed = 4;
+    using Batch = std::function<void(const float*, const float*, float*, float*, float*)>;
+    using Single = std::function<tp::Noise2(glm::vec2)>;
+    const tp::OpenLattice open;
+    const tp::TorusLattice torus{period};
+    const tp::DuneWaves<tp::OpenLattice> open_waves = tp::dune_waves(d);
+    const tp::DuneWaves<tp::TorusLattice> torus_waves = tp::dune_waves(d, period);
+    const std::pair<Batch, Single> reliefs[] = {
+        {[&](auto... a) { tp::fbm_batch(f, open, n, a...); }, [&](glm::vec2 p) { return tp::fbm(p, f, open); }},
+        {[&](auto... a) { tp::fbm_batch(f, torus, n, a...); }, [&](glm::vec2 p) { return tp::fbm(p, f, torus); }},
+        {[&](auto... a) { tp::ridged_batch(f, 1.0f, open, n, a...); }, [&](glm::vec2 p) { return tp::ridged(p, f, open); }},
+        {[&](auto... a) { tp::ridged_batch(f, 0.9f, torus, n, a...); },
+         [&](glm::vec2 p) { return tp::ridged(p, f, torus, 0.9f); }},
+        {[&](auto... a) { tp::domain_warp_batch(f, 0.7f, open, n, a...); },
+         [&](glm::vec2 p) { return tp::domain_warp(p, f, 0.7f, open); }},
+        {[&](auto... a) { tp::domain_warp_batch(f, 0.7f, torus, n, a...); },
+         [&](glm::vec2 p) { return tp::domain_warp(p, f, 0.7f, torus); }},
+        {[&](auto... a) { tp::dunes_batch(d, open_waves, n, a...); }, [&](glm::vec2 p) { return tp::dunes(p, d, open_waves); }},
+        {[&](auto... a) { tp::dunes_batch(d, torus_waves, n, a...); },
+         [&](glm::vec2 p) { return tp::dunes(p, d, torus_waves); }},
+    };
+    int relief = 0;
+    for (const auto& [batch, single] : reliefs) {
+        std::vector<float> v(n), gx(n), gy(n), values_only(n);
+        batch(x.data(), y.data(), v.data(), gx.data(), gy.data());
+        batch(x.data(), y.data(), values_only.data(), nullptr, nullptr);
+        for (size_t i = 0; i < n; ++i) {
+            const tp::Noise2 s = single(glm::vec2(x[i], y[i]));
+            ASSERT_EQ(std::bit_cast<uint32_t>(v[i]), std::bit_cast<uint32_t>(s.value)) << "relief " << relief << " point " << i;
+            ASSERT_EQ(std::bit_cast<uint32_t>(values_only[i]), std::bit_cast<uint32_t>(s.value)) << relief << " " << i;
+            ASSERT_EQ(std::bit_cast<uint32_t>(gx[i]), std::bit_cast<uint32_t>(s.gradient.x)) << relief << " " << i;
+            ASSERT_EQ(std::bit_cast<uint32_t>(gy[i]), std::bit_cast<uint32_t>(s.gradient.y)) << relief << " " << i;
+        }
+        ++relief;
     }
 }
 
@@ -287,6 +342,43 @@ TEST(ProceduralField, FieldGradientsAndBatches) {
             ASSERT_NEAR(gx[i], s.gradient.x, 1e-4f * (1 + std::abs(s.gradient.x)));
             ASSERT_NEAR(gy[i], s.gradient.y, 1e-4f * (1 + std::abs(s.gradient.y)));
             ASSERT_NEAR(gz[i], s.gradient.z, 1e-4f * (1 + std::abs(s.gradient.z)));
+        }
+    }
+}
+
+// The fields' batch forms (what the marcher's packets call) give value() and sample() bit for
+// bit: the terrain with every relief, the noise volume (a lacunarity that is not a power of
+// two, so each octave's scaling rounds) and the 16-sine noise, at a count that is not a
+// multiple of any block.
+TEST(ProceduralField, FieldBatchesEqualSinglePointsBitForBit) {
+    const auto ps = points(150, 30);
+    const size_t n = ps.size();
+    std::vector<float> x, y, z;
+    for (auto p : ps) x.push_back(p.x), y.push_back(p.y * 0.1f), z.push_back(p.z);
+    tp::TerrainParams terrain;
+    terrain.fractal = {5, 2.5f, 0.5f, 3};
+    terrain.frequency = 0.12f;
+    terrain.amplitude = 1.6f;
+    terrain.base = -0.4f;
+    std::vector<std::unique_ptr<tp::ImplicitField>> fields;
+    for (tp::Relief relief : {tp::Relief::fbm, tp::Relief::ridged, tp::Relief::warped, tp::Relief::dunes}) {
+        terrain.relief = relief;
+        fields.push_back(std::make_unique<tp::TerrainField>(terrain));
+    }
+    fields.push_back(std::make_unique<tp::NoiseVolumeField>(tp::VolumeParams{tp::Fractal{4, 2.5f, 0.5f, 3}, 0.7f, 0.5f, 0.5f}));
+    fields.push_back(std::make_unique<tp::SineNoiseField>());
+    for (size_t f = 0; f < fields.size(); ++f) {
+        const tp::ImplicitField& field = *fields[f];
+        std::vector<float> v(n), v2(n), gx(n), gy(n), gz(n);
+        field.sample_batch(n, x.data(), y.data(), z.data(), v.data(), gx.data(), gy.data(), gz.data());
+        field.value_batch(n, x.data(), y.data(), z.data(), v2.data());
+        for (size_t i = 0; i < n; ++i) {
+            const glm::vec3 p(x[i], y[i], z[i]);
+            const tp::FieldSample s = field.sample(p);
+            const float bits[][2] = {{v[i], s.value}, {v2[i], field.value(p)}, {gx[i], s.gradient.x},
+                                     {gy[i], s.gradient.y}, {gz[i], s.gradient.z}};
+            for (const auto& b : bits)
+                ASSERT_EQ(std::bit_cast<uint32_t>(b[0]), std::bit_cast<uint32_t>(b[1])) << "field " << f << " point " << i;
         }
     }
 }

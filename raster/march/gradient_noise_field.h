@@ -26,17 +26,34 @@ struct GradientNoiseField {
         return (amplitude * frequency) * procedural::gradient_noise(p * frequency, seed).gradient -
                glm::vec3(0.0f, 1.0f, 0.0f);
     }
-    // The packet form through procedural's SIMD batch.
+    // The packet forms through procedural's SIMD batch, equal to value() and gradient() at
+    // each point bit for bit (the same noise at the same scaled point, finished the same way).
     void values(const float* x, const float* y, const float* z, float* out) const {
-        alignas(64) float sx[kMarchLanes], sy[kMarchLanes], sz[kMarchLanes];
-        alignas(64) float n[kMarchLanes], gx[kMarchLanes], gy[kMarchLanes], gz[kMarchLanes];
-        for (int i = 0; i < kMarchLanes; ++i) {
-            sx[i] = x[i] * frequency;
-            sy[i] = y[i] * frequency;
-            sz[i] = z[i] * frequency;
-        }
-        procedural::gradient_noise_batch(seed, kMarchLanes, sx, sy, sz, n, gx, gy, gz);
+        alignas(64) float sx[kMarchLanes], sy[kMarchLanes], sz[kMarchLanes], n[kMarchLanes];
+        scaled(x, y, z, sx, sy, sz);
+        procedural::gradient_noise_batch(seed, kMarchLanes, sx, sy, sz, n);
         for (int i = 0; i < kMarchLanes; ++i) out[i] = base + amplitude * n[i] - y[i];
+    }
+    void gradients(const float* x, const float* y, const float* z, float* gx, float* gy, float* gz) const {
+        alignas(64) float sx[kMarchLanes], sy[kMarchLanes], sz[kMarchLanes], n[kMarchLanes];
+        scaled(x, y, z, sx, sy, sz);
+        procedural::gradient_noise_batch(seed, kMarchLanes, sx, sy, sz, n, gx, gy, gz);
+        for (int i = 0; i < kMarchLanes; ++i) {
+            const glm::vec3 g = (amplitude * frequency) * glm::vec3(gx[i], gy[i], gz[i]) - glm::vec3(0.0f, 1.0f, 0.0f);
+            gx[i] = g.x;
+            gy[i] = g.y;
+            gz[i] = g.z;
+        }
+    }
+
+private:
+    void scaled(const float* x, const float* y, const float* z, float* sx, float* sy, float* sz) const {
+        for (int i = 0; i < kMarchLanes; ++i) {
+            const glm::vec3 p = glm::vec3(x[i], y[i], z[i]) * frequency;
+            sx[i] = p.x;
+            sy[i] = p.y;
+            sz[i] = p.z;
+        }
     }
 };
 

@@ -7,6 +7,12 @@
 // once (see evaluate_lanes) so the field's inner loops run on vectors; lanes that have
 // finished are masked, and the packet stops when every lane has. Tests compare the two.
 //
+// A field that bounds itself along the packet's rays (BoundedPacketField, e.g. the metaballs a
+// packet crosses) is first asked which lanes can reach the surface at all, and then, before
+// each run of kBoundedSteps steps, whether any active lane can within that run; when none can,
+// the run's steps are taken without sampling (the same t and step updates as a run of
+// outside samples), so the bound saves samples and never changes a hit.
+//
 // A NaN field value counts as "outside" (the comparison f >= 0 is false), so a field that
 // breaks down somewhere yields a miss there, never a crash or a NaN depth.
 #pragma once
@@ -24,6 +30,10 @@
 namespace tessera::march {
 
 inline constexpr float kMiss = std::numeric_limits<float>::infinity();
+
+// Steps a bounded field (BoundedPacketField) is asked to rule out at once: on the metaballs
+// scene, 8 takes fewer samples plus bounds (each about one sample's cost) than 4 or 16.
+inline constexpr int kBoundedSteps = 8;
 
 namespace detail {
 // Bisection on [outside, inside] (f < 0 at outside, f >= 0 at inside) until the bracket is no
@@ -80,11 +90,12 @@ void march_packet(const F& field, const RayPacket& rays, const PacketSegments& s
     using simd::vmask;
     constexpr int N = kMarchLanes;
     alignas(64) float first_step[N], growth_of[N], px[N], py[N], pz[N], v[N];
+    const double steps_sum = settings.steps_sum();
     for (int i = 0; i < N; ++i) {
         t_hit[i] = kMiss;
         const Interval segment{segments.t0[i], segments.t1[i]};
         const MarchSettings::Schedule s =
-            segment.empty() ? MarchSettings::Schedule{0.0f, 1.0f} : settings.schedule(segment);
+            segment.empty() ? MarchSettings::Schedule{0.0f, 1.0f} : settings.schedule(segment, steps_sum);
         first_step[i] = s.first_step;
         growth_of[i] = s.growth;
     }
@@ -93,6 +104,8 @@ void march_packet(const F& field, const RayPacket& rays, const PacketSegments& s
     const vfloat dx = vfloat::load(rays.dx), dy = vfloat::load(rays.dy), dz = vfloat::load(rays.dz);
     const vfloat growth = vfloat::load(growth_of);
     vmask active = (simd::lane_index() < simd::vint(rays.count)) & (t0 <= t1);
+    // A lane the field rules out over its whole segment misses without a sample.
+    if constexpr (BoundedPacketField<F>) active = active & field.may_reach(t0, t1);
     if (!simd::any(active)) return;
 
     // Sample at t0 first: a lane that starts inside the solid hits there.
@@ -107,19 +120,45 @@ void march_packet(const F& field, const RayPacket& rays, const PacketSegments& s
 
     vfloat t_prev = t0, dt = vfloat::load(first_step), inside_t(0.0f);
     vmask found(false);
-    for (int k = 0; k < settings.steps && simd::any(active); ++k) {
-        const vfloat t = simd::min(t_prev + dt, t1);
-        (ox + dx * t).store(px);
-        (oy + dy * t).store(py);
-        (oz + dz * t).store(pz);
-        evaluate_lanes(field, px, py, pz, v);
-        const vmask inside = active & (vfloat(0.0f) <= vfloat::load(v));
-        const vmask left = active & (t1 <= t);  // reached the end of the bounds: a miss
-        found = found | inside;
-        inside_t = simd::select(inside, t, inside_t);
-        active = simd::andnot(inside | left, active);
-        t_prev = simd::select(active, t, t_prev);
-        dt = simd::select(active, dt * growth, dt);
+    for (int k = 0; k < settings.steps && simd::any(active);) {
+        int run = 1;  // steps to sample one by one
+        if constexpr (BoundedPacketField<F>) {
+            // The next steps as the loop below would take them if every sample were outside;
+            // when the field rules out every active lane's stretch [t_prev, last], that is
+            // what they are, and the packet moves on without sampling them.
+            run = std::min(kBoundedSteps, settings.steps - k);
+            vfloat t_run = t_prev, dt_run = dt, last = t_prev;
+            vmask on = active;
+            for (int j = 0; j < run; ++j) {
+                const vfloat t = simd::min(t_run + dt_run, t1);
+                last = simd::select(on, t, last);
+                on = simd::andnot(on & (t1 <= t), on);
+                t_run = simd::select(on, t, t_run);
+                dt_run = simd::select(on, dt_run * growth, dt_run);
+            }
+            if (!simd::any(active & field.may_reach(t_prev, last))) {
+                active = on;
+                t_prev = t_run;
+                dt = dt_run;
+                k += run;
+                continue;
+            }
+        }
+        for (int j = 0; j < run && simd::any(active); ++j) {
+            const vfloat t = simd::min(t_prev + dt, t1);
+            (ox + dx * t).store(px);
+            (oy + dy * t).store(py);
+            (oz + dz * t).store(pz);
+            evaluate_lanes(field, px, py, pz, v);
+            const vmask inside = active & (vfloat(0.0f) <= vfloat::load(v));
+            const vmask left = active & (t1 <= t);  // reached the end of the bounds: a miss
+            found = found | inside;
+            inside_t = simd::select(inside, t, inside_t);
+            active = simd::andnot(inside | left, active);
+            t_prev = simd::select(active, t, t_prev);
+            dt = simd::select(active, dt * growth, dt);
+        }
+        k += run;
     }
 
     // Bisection of every hit lane in lockstep, with march_ray's stopping rule per lane (bracket

@@ -27,15 +27,19 @@ void MarchSettings::validate() const {
                                     std::to_string(tolerance));
 }
 
-MarchSettings::Schedule MarchSettings::schedule(Interval segment) const {
+double MarchSettings::steps_sum() const {
+    if (strategy == StepStrategy::uniform) return 1.0;
+    const double g = growth;
+    return (std::pow(g, double(steps)) - 1.0) / (g - 1.0);
+}
+
+MarchSettings::Schedule MarchSettings::schedule(Interval segment, double steps_sum) const {
     const float length = segment.t1 - segment.t0;
     if (strategy == StepStrategy::uniform)
         return {std::min(length / float(steps), max_step), 1.0f};
     // Sum of the geometric series dt0 (g^n - 1) / (g - 1) = length, computed in double so the
     // last step lands on t1 to float precision.
-    const double g = growth;
-    const double sum = (std::pow(g, double(steps)) - 1.0) / (g - 1.0);
-    return {float(double(length) / sum), growth};
+    return {float(double(length) / steps_sum), growth};
 }
 
 }  // namespace tessera::march

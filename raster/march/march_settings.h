@@ -37,7 +37,11 @@ struct MarchSettings {
         float first_step;
         float growth;
     };
-    Schedule schedule(Interval segment) const;
+    Schedule schedule(Interval segment) const { return schedule(segment, steps_sum()); }
+    // The same with steps_sum() given, so a packet computes it once for all its lanes.
+    Schedule schedule(Interval segment, double steps_sum) const;
+    // The sum of the geometric step factors, (g^n - 1) / (g - 1), in double (1 for uniform).
+    double steps_sum() const;
 };
 
 }  // namespace tessera::march

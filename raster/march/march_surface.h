@@ -4,12 +4,17 @@
 // std::invalid_argument for bounds that cannot hold a surface:
 // - SlabSurface: a field that lies between two horizontal planes (the terrain and its
 //   3-D noise);
-// - MetaballSurface: metaballs, culled per packet to the balls the packet's rays cross.
+// - MetaballSurface: metaballs, culled per tile to the balls its rays may meet (bind_tile: a
+//   tile far from every ball marches nothing) and per packet to the balls the packet's rays
+//   cross, which also bound the field along each ray (metaball_packet.h).
 #pragma once
 #include "raster/march/bounds.h"
 #include "raster/march/march_field.h"
 #include "raster/march/march.h"
 #include "raster/march/metaball_field.h"
+#include "raster/march/metaball_packet.h"
+#include "raster/march/ray_generation.h"
+#include "raster/core/tile.h"
 
 namespace tessera::march {
 
@@ -35,14 +40,28 @@ struct SlabSurface {
 struct MetaballSurface {
     const MetaballField& field;
 
-    using Scratch = MetaballField;
+    struct Scratch {
+        MetaballField tile;                    // the balls a tile's rays may meet
+        const MetaballField* from = nullptr;   // what packets are culled from: the tile's, or all
+        MetaballPacket packet;
+    };
 
     void validate() const {}  // the field validated its balls when it was built
 
-    const MetaballField& bind(const RayPacket& rays, float t_far, PacketSegments& segments,
-                              Scratch& subset) const {
-        field.cull(rays, t_far, subset, segments);
-        return subset;
+    // Culls to the balls the rays of the tile's pixels (x0..x1-1, y0..y1-1) may meet, from
+    // the cone of its corner pixels' rays; false when none remains (nothing to march).
+    bool bind_tile(const RayGenerator& rays, const TileRect& rect, Scratch& scratch) const {
+        const glm::vec3 corners[] = {rays.direction(rect.x0, rect.y0), rays.direction(rect.x1 - 1, rect.y0),
+                                     rays.direction(rect.x0, rect.y1 - 1), rays.direction(rect.x1 - 1, rect.y1 - 1)};
+        field.cull(rays.eye(), corners, scratch.tile);
+        scratch.from = &scratch.tile;
+        return scratch.tile.size() > 0;
+    }
+
+    const MetaballPacket& bind(const RayPacket& rays, float t_far, PacketSegments& segments,
+                               Scratch& scratch) const {
+        (scratch.from ? *scratch.from : field).cull(rays, t_far, scratch.packet, segments);
+        return scratch.packet;
     }
 };
 

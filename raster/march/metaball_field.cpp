@@ -1,11 +1,14 @@
 #include "raster/march/metaball_field.h"
 
 #include <algorithm>
+#include <span>
 #include <cmath>
 #include <stdexcept>
 #include <string>
 
 #include "raster/march/bounds.h"
+#include "raster/march/metaball_packet.h"
+#include "raster/simd/lane_math.h"
 
 namespace tessera::march {
 
@@ -103,6 +106,35 @@ void MetaballField::values(const float* x, const float* y, const float* z, float
     for (int i = 0; i < kMarchLanes; ++i) out[i] = sum[i] - style_.threshold;
 }
 
+template <class Kernel>
+void MetaballField::accumulate_gradient(const Kernel& kernel, const float* x, const float* y, const float* z,
+                                        float* gx, float* gy, float* gz) const {
+    // gradient() per lane: g += (w dK/ds 2 / R^2) (p - c), ball by ball.
+    using simd::vfloat;
+    const vfloat px = vfloat::load(x), py = vfloat::load(y), pz = vfloat::load(z);
+    vfloat ax(0.0f), ay(0.0f), az(0.0f);
+    for (size_t b = 0; b < cx_.size(); ++b) {
+        const vfloat qx = px - vfloat(cx_[b]), qy = py - vfloat(cy_[b]), qz = pz - vfloat(cz_[b]);
+        const KernelSample<vfloat> k = kernel.at((qx * qx + qy * qy + qz * qz) * vfloat(inv_r2_[b]));
+        const vfloat scale = vfloat(weight_[b]) * k.d_ds * vfloat(2.0f) * vfloat(inv_r2_[b]);
+        ax = ax + scale * qx;
+        ay = ay + scale * qy;
+        az = az + scale * qz;
+    }
+    ax.store(gx);
+    ay.store(gy);
+    az.store(gz);
+}
+
+void MetaballField::gradients(const float* x, const float* y, const float* z, float* gx, float* gy,
+                              float* gz) const {
+    switch (style_.kernel) {
+    case MetaballKernel::wyvill: accumulate_gradient(WyvillKernel{}, x, y, z, gx, gy, gz); break;
+    case MetaballKernel::perlin: accumulate_gradient(PerlinKernel{}, x, y, z, gx, gy, gz); break;
+    default: accumulate_gradient(blinn_, x, y, z, gx, gy, gz); break;
+    }
+}
+
 Interval MetaballField::bounds(glm::vec3 o, glm::vec3 d, float t_far) const {
     Interval hull;  // empty
     for (size_t b = 0; b < cx_.size(); ++b) {
@@ -115,35 +147,35 @@ Interval MetaballField::bounds(glm::vec3 o, glm::vec3 d, float t_far) const {
 
 namespace {
 
-// The cone from a common origin that contains every live ray of a packet (primary rays share
-// the eye), so one test per ball can reject balls nowhere near the packet before the per-ray
-// tests. `valid` is false when the origins differ.
-struct PacketCone {
+// The cone from the eye that contains a tile's rays (their directions all lie in the cone of
+// its corner pixels' directions, since a pixel's unnormalised direction is linear in its
+// position), so one test per ball rejects balls nowhere near the tile before any per-ray
+// test. `valid` is false when the cone is too wide for the test.
+struct RayCone {
     bool valid = false;
     glm::vec3 apex{0.0f}, axis{0.0f};
     float cos_half = 1.0f, sin_half = 0.0f;  // of the half opening angle
 };
 
-PacketCone packet_cone(const RayPacket& rays) {
-    PacketCone cone;
+RayCone cone_around(glm::vec3 apex, std::span<const glm::vec3> directions) {
+    RayCone cone;
     glm::vec3 sum(0.0f);
-    for (int i = 0; i < rays.count; ++i) {
-        if (rays.origin(i) != rays.origin(0)) return cone;
-        sum += rays.direction(i);
-    }
+    for (const glm::vec3& d : directions) sum += d;
     const float len = glm::length(sum);
     if (!(len > 0.0f)) return cone;
     cone.axis = sum / len;
     float cos_half = 1.0f;
-    for (int i = 0; i < rays.count; ++i) cos_half = std::min(cos_half, glm::dot(rays.direction(i), cone.axis));
-    cone.apex = rays.origin(0);
-    // Widened by 1e-3 rad so rounding never rejects a ball a ray touches; a false "maybe"
-    // only costs the per-ray tests that follow.
-    const float half = std::acos(std::clamp(cos_half, -1.0f, 1.0f)) + 1e-3f;
-    if (half >= 1.5f) return cone;  // a very wide packet: the trigonometry below would not hold
-    cone.cos_half = std::cos(half);
-    cone.sin_half = std::sin(half);
-    cone.valid = true;
+    for (const glm::vec3& d : directions) cos_half = std::min(cos_half, glm::dot(d, cone.axis));
+    cone.apex = apex;
+    // Widened by e = 1e-3 rad so rounding never rejects a ball a ray touches (a false "maybe"
+    // only costs the per-ray tests that follow), through cos(h + e) = cos h cos e - sin h sin e
+    // and sin(h + e) = sin h cos e + cos h sin e.
+    const float c = std::clamp(cos_half, -1.0f, 1.0f), s = std::sqrt(1.0f - c * c);
+    constexpr float kCosE = 0.9999995f, kSinE = 9.9999983e-4f;  // cos 1e-3, sin 1e-3
+    cone.cos_half = c * kCosE - s * kSinE;
+    cone.sin_half = s * kCosE + c * kSinE;
+    // A very wide cone (half angle 1.5 rad or more): the test below would not hold.
+    cone.valid = cone.cos_half > 0.0707372f;  // cos 1.5
     return cone;
 }
 
@@ -151,7 +183,7 @@ PacketCone packet_cone(const RayPacket& rays) {
 // centre must not exceed the half angle plus the sphere's angular radius b (sin b = R/dist),
 // compared through cosines, cos(half + b) = cos half cos b - sin half sin b, with no
 // inverse trigonometry per ball.
-bool cone_may_touch(const PacketCone& cone, glm::vec3 centre, float radius) {
+bool cone_may_touch(const RayCone& cone, glm::vec3 centre, float radius) {
     if (!cone.valid) return true;
     const glm::vec3 v = centre - cone.apex;
     const float dist = glm::length(v);
@@ -166,27 +198,14 @@ bool cone_may_touch(const PacketCone& cone, glm::vec3 centre, float radius) {
 
 }  // namespace
 
-void MetaballField::cull(const RayPacket& rays, float t_far, MetaballField& subset,
-                         PacketSegments& segments) const {
+void MetaballField::cull(glm::vec3 eye, std::span<const glm::vec3> corners, MetaballField& subset) const {
     subset.style_ = style_;
     subset.blinn_ = blinn_;
-    for (auto* v : {&subset.cx_, &subset.cy_, &subset.cz_, &subset.radius_, &subset.inv_r2_,
-                    &subset.weight_})
+    for (auto* v : {&subset.cx_, &subset.cy_, &subset.cz_, &subset.radius_, &subset.inv_r2_, &subset.weight_})
         v->clear();
-    const PacketCone cone = packet_cone(rays);
-    Interval hull[kMarchLanes];
+    const RayCone cone = cone_around(eye, corners);
     for (size_t b = 0; b < cx_.size(); ++b) {
-        const glm::vec3 c(cx_[b], cy_[b], cz_[b]);
-        if (!cone_may_touch(cone, c, radius_[b])) continue;
-        bool crossed = false;
-        for (int i = 0; i < rays.count; ++i) {
-            const Interval s = sphere_interval(rays.origin(i), rays.direction(i), c, radius_[b], t_far);
-            if (s.empty()) continue;
-            crossed = true;
-            hull[i] = hull[i].empty() ? s
-                                      : Interval{std::min(hull[i].t0, s.t0), std::max(hull[i].t1, s.t1)};
-        }
-        if (!crossed) continue;
+        if (!cone_may_touch(cone, {cx_[b], cy_[b], cz_[b]}, radius_[b])) continue;
         subset.cx_.push_back(cx_[b]);
         subset.cy_.push_back(cy_[b]);
         subset.cz_.push_back(cz_[b]);
@@ -194,10 +213,63 @@ void MetaballField::cull(const RayPacket& rays, float t_far, MetaballField& subs
         subset.inv_r2_.push_back(inv_r2_[b]);
         subset.weight_.push_back(weight_[b]);
     }
-    for (int i = 0; i < kMarchLanes; ++i) {
-        segments.t0[i] = hull[i].t0;
-        segments.t1[i] = hull[i].t1;
+}
+
+void MetaballField::cull(const RayPacket& rays, float t_far, MetaballPacket& packet,
+                         PacketSegments& segments) const {
+    using simd::std_max;
+    using simd::std_min;
+    using simd::vfloat;
+    using simd::vmask;
+    MetaballField& subset = packet.field_;
+    subset.style_ = style_;
+    subset.blinn_ = blinn_;
+    for (auto* v : {&subset.cx_, &subset.cy_, &subset.cz_, &subset.radius_, &subset.inv_r2_,
+                    &subset.weight_, &packet.centre_norm_, &packet.positive_weight_})
+        v->clear();
+    packet.closest_.clear();
+    packet.miss2_.clear();
+    const vfloat ox = vfloat::load(rays.ox), oy = vfloat::load(rays.oy), oz = vfloat::load(rays.oz);
+    const vfloat dx = vfloat::load(rays.dx), dy = vfloat::load(rays.dy), dz = vfloat::load(rays.dz);
+    const vmask live = simd::lane_index() < simd::vint(rays.count);
+    vfloat hull0(Interval{}.t0), hull1(Interval{}.t1);  // empty
+    float magnitude = style_.threshold;
+    for (size_t b = 0; b < cx_.size(); ++b) {
+        const glm::vec3 c(cx_[b], cy_[b], cz_[b]);
+        // sphere_interval in lanes, with its operations in its order (glm::dot sums x, y, z;
+        // std::max and std::min as std_max and std_min), so the intervals are its bits.
+        const vfloat ocx = ox - vfloat(c.x), ocy = oy - vfloat(c.y), ocz = oz - vfloat(c.z);
+        const vfloat along = (dx * ocx + dy * ocy) + dz * ocz;
+        const vfloat px = ocx - along * dx, py = ocy - along * dy, pz = ocz - along * dz;
+        const vfloat miss2 = (px * px + py * py) + pz * pz;
+        const vfloat disc = vfloat(radius_[b] * radius_[b]) - miss2;
+        const vfloat root = simd::sqrt(disc);
+        const vfloat closest = along * vfloat(-1.0f);  // -along, sign of zero included
+        const vfloat s0 = std_max(closest - root, vfloat(0.0f));
+        const vfloat s1 = std_min(closest + root, vfloat(t_far));
+        const vmask crosses = simd::andnot(disc < vfloat(0.0f), live & (s0 <= s1));
+        if (!simd::any(crosses)) continue;
+        const vmask first = simd::andnot(hull0 <= hull1, crosses);
+        hull0 = simd::select(crosses, simd::select(first, s0, std_min(hull0, s0)), hull0);
+        hull1 = simd::select(crosses, simd::select(first, s1, std_max(hull1, s1)), hull1);
+        subset.cx_.push_back(cx_[b]);
+        subset.cy_.push_back(cy_[b]);
+        subset.cz_.push_back(cz_[b]);
+        subset.radius_.push_back(radius_[b]);
+        subset.inv_r2_.push_back(inv_r2_[b]);
+        subset.weight_.push_back(weight_[b]);
+        packet.centre_norm_.push_back(glm::length(c));
+        packet.positive_weight_.push_back(std::max(weight_[b], 0.0f));
+        packet.closest_.emplace_back();
+        packet.miss2_.emplace_back();
+        closest.store(packet.closest_.back().v);
+        miss2.store(packet.miss2_.back().v);
+        magnitude += std::abs(weight_[b]);
     }
+    hull0.store(segments.t0);
+    hull1.store(segments.t1);
+    simd::sqrt((ox * ox + oy * oy) + oz * oz).store(packet.origin_norm_.v);
+    packet.reach_ = style_.threshold - 1e-5f * magnitude;
 }
 
 }  // namespace tessera::march

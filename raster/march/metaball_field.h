@@ -6,10 +6,13 @@
 // to a ray that misses its support sphere. cull() uses that: for a packet of rays it keeps
 // only the balls some ray of the packet crosses and gives each ray the hull of the support
 // intervals it crosses as its march bounds. Along those rays the culled field equals the full
-// one exactly, and a far ball, or empty sky, costs one ray-sphere test per packet.
+// one exactly, and a far ball, or empty sky, costs one ray-sphere test per packet. The culled
+// balls also bound the field along each ray (metaball_packet.h), so the march skips the
+// stretches where no sum of kernels can reach the threshold.
 #pragma once
 #include <glm/glm.hpp>
 
+#include <span>
 #include <vector>
 
 #include "raster/march/march.h"
@@ -30,6 +33,8 @@ struct MetaballStyle {
     float blinn_sharpness = 6.907755f;  // a = ln 1000 (see metaball_kernel.h)
 };
 
+class MetaballPacket;
+
 class MetaballField {
 public:
     MetaballField() : blinn_(MetaballStyle{}.blinn_sharpness) {}
@@ -41,21 +46,36 @@ public:
     float value(glm::vec3 p) const;
     glm::vec3 gradient(glm::vec3 p) const;
     void values(const float* x, const float* y, const float* z, float* out) const;
+    // gradient() at kMarchLanes points, bit for bit (the same operations in the same order).
+    void gradients(const float* x, const float* y, const float* z, float* gx, float* gy, float* gz) const;
 
-    // Fills `subset` (whose storage is reused) with the balls whose support some live lane of
-    // `rays` crosses within [0, t_far], and `segments` with each lane's march bounds.
-    void cull(const RayPacket& rays, float t_far, MetaballField& subset,
+    // Fills `subset` (whose storage is reused) with the balls whose support may meet a ray from
+    // `eye` with a direction in the cone spanned by `corners` (a tile's corner pixels: every
+    // pixel ray of the tile lies in it), in their order; a cone wider than 1.5 rad keeps all.
+    void cull(glm::vec3 eye, std::span<const glm::vec3> corners, MetaballField& subset) const;
+
+    // Fills `packet` (whose storage is reused) with the balls whose support some live lane of
+    // `rays` crosses within [0, t_far] and each lane's closest approach to them, and
+    // `segments` with each lane's march bounds: the hull of the support intervals it crosses,
+    // bit for bit what bounds() gives that lane (the ray-sphere tests run in lanes).
+    void cull(const RayPacket& rays, float t_far, MetaballPacket& packet,
               PacketSegments& segments) const;
 
     // The bounds of one ray (the scalar counterpart of cull, over all balls).
     Interval bounds(glm::vec3 o, glm::vec3 d, float t_far) const;
 
     size_t size() const { return cx_.size(); }
+    Metaball ball(size_t i) const { return {{cx_[i], cy_[i], cz_[i]}, radius_[i], weight_[i]}; }
 
 private:
+    friend class MetaballPacket;
+
     template <class Kernel>
     void accumulate(const Kernel& kernel, const float* x, const float* y, const float* z,
                     float* sum) const;
+    template <class Kernel>
+    void accumulate_gradient(const Kernel& kernel, const float* x, const float* y, const float* z, float* gx,
+                             float* gy, float* gz) const;
 
     MetaballStyle style_;
     BlinnKernel blinn_;

@@ -111,6 +111,15 @@ float RayGenerator::window_depth(const glm::vec3& world) const {
     return clip.z / clip.w * 0.5f + 0.5f;
 }
 
+vfloat RayGenerator::window_depths(const simd::V3<vfloat>& world) const {
+    const glm::mat4& m = view_projection_;
+    auto row = [&](int r) {
+        return (vfloat(m[0][r]) * world.x + vfloat(m[1][r]) * world.y) +
+               (vfloat(m[2][r]) * world.z + vfloat(m[3][r] * 1.0f));
+    };
+    return row(2) / row(3) * vfloat(0.5f) + vfloat(0.5f);
+}
+
 float RayGenerator::distance_from_depth(int x, int y, float depth) const {
     if (!(depth < 1.0f)) return std::numeric_limits<float>::infinity();
     const glm::vec2 n = ndc(x, y);

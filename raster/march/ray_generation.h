@@ -36,6 +36,8 @@ public:
     // Converts a world-space point to window depth (z_ndc * 0.5 + 0.5), the value the depth
     // buffer stores, so marched hits and rasterized triangles are compared in one space.
     float window_depth(const glm::vec3& world) const;
+    // The same for kLanes points, one per lane (glm's mat4 * vec4 order): equal lane by lane.
+    simd::vfloat window_depths(const simd::V3<simd::vfloat>& world) const;
 
     // Distance from the eye to the surface seen at pixel (x, y) with window depth `depth`
     // (the point is unprojected through the inverse view-projection); infinity for
@@ -46,7 +48,11 @@ public:
     // them are visible (the rasterizer clips triangles to the same planes).
     float near_distance(glm::vec3 d) const { return near_ / glm::dot(d, forward_); }
     float far_distance(glm::vec3 d) const { return far_ / glm::dot(d, forward_); }
-    simd::vfloat far_distances(const simd::V3<simd::vfloat>& d) const {  // glm::dot's order
+    simd::vfloat near_distances(const simd::V3<simd::vfloat>& d) const {  // glm::dot's order
+        using simd::vfloat;
+        return vfloat(near_) / ((d.x * vfloat(forward_.x) + d.y * vfloat(forward_.y)) + d.z * vfloat(forward_.z));
+    }
+    simd::vfloat far_distances(const simd::V3<simd::vfloat>& d) const {
         using simd::vfloat;
         return vfloat(far_) / ((d.x * vfloat(forward_.x) + d.y * vfloat(forward_.y)) + d.z * vfloat(forward_.z));
     }

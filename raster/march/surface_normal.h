@@ -8,10 +8,12 @@
 #include <glm/glm.hpp>
 
 #include <cmath>
+#include <limits>
 #include <stdexcept>
 #include <string>
 
 #include "raster/march/march_field.h"
+#include "raster/simd/lane_math.h"
 
 namespace tessera::march {
 
@@ -47,6 +49,32 @@ glm::vec3 surface_normal(const F& field, glm::vec3 p, const NormalSettings& sett
     const float len = glm::length(g);
     if (!(len > 0.0f) || !std::isfinite(len)) return {0.0f, 1.0f, 0.0f};
     return -g / len;
+}
+
+// surface_normal at kMarchLanes points (x[i], y[i], z[i]), equal to it lane by lane: the
+// analytic gradient through the field's packet or batch form (evaluate_gradients), normalised
+// in lanes with glm::length's and the division's order; central differences a lane at a time.
+template <MarchField F>
+simd::V3<simd::vfloat> surface_normals(const F& field, const float* x, const float* y, const float* z,
+                                       const NormalSettings& settings) {
+    using simd::vfloat;
+    alignas(64) float gx[kMarchLanes], gy[kMarchLanes], gz[kMarchLanes];
+    if (settings.method == NormalMethod::analytic) {
+        evaluate_gradients(field, x, y, z, gx, gy, gz);
+        const simd::V3<vfloat> g{vfloat::load(gx), vfloat::load(gy), vfloat::load(gz)};
+        const vfloat len = simd::sqrt((g.x * g.x + g.y * g.y) + g.z * g.z);
+        const simd::vmask usable = (vfloat(0.0f) < len) & (len < vfloat(std::numeric_limits<float>::infinity()));
+        const vfloat minus(-1.0f);
+        return simd::select(usable, simd::V3<vfloat>{g.x * minus / len, g.y * minus / len, g.z * minus / len},
+                            simd::V3<vfloat>{vfloat(0.0f), vfloat(1.0f), vfloat(0.0f)});
+    }
+    for (int i = 0; i < kMarchLanes; ++i) {
+        const glm::vec3 n = surface_normal(field, glm::vec3(x[i], y[i], z[i]), settings);
+        gx[i] = n.x;
+        gy[i] = n.y;
+        gz[i] = n.z;
+    }
+    return {vfloat::load(gx), vfloat::load(gy), vfloat::load(gz)};
 }
 
 }  // namespace tessera::march

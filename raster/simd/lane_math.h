@@ -78,6 +78,18 @@ inline vfloat floor_of(vfloat x) { return std::floor(x.v); }
 inline simd::vint gather_int(const int32_t* base, simd::vint index) { return base[index.v]; }
 #endif
 
+// std::max(a, b) and std::min(a, b) lane by lane, "a < b ? b : a" and "b < a ? b : a": for lane
+// forms of scalar code written with them (the max/min instructions pick differently between
+// zeros of opposite sign and around NaN).
+template <class F>
+F std_max(F a, F b) {
+    return select(a < b, b, a);
+}
+template <class F>
+F std_min(F a, F b) {
+    return select(b < a, b, a);
+}
+
 template <class F>
 F abs_of(F x) {
     return max(x, F(0.0f) - x);
