@@ -4,6 +4,7 @@
 #include <OpenImageIO/imageio.h>
 #include <gtest/gtest.h>
 #include <tbb/global_control.h>
+#include <zlib.h>
 
 #include <bit>
 #include <cmath>
@@ -16,8 +17,10 @@
 #include "raster/core/color_space.h"
 #include "raster/core/error.h"
 #include "raster/io/image_io.h"
+#include "raster/output/adler32.h"
 #include "raster/output/frame_encoding.h"
 #include "raster/output/png_encoder.h"
+#include "raster/output/rle_deflate.h"
 #include "raster/output/srgb8.h"
 
 namespace fs = std::filesystem;
@@ -58,7 +61,114 @@ void expect_decodes_to(const std::vector<uint8_t>& file, const std::vector<uint8
     EXPECT_TRUE(decoded == pixels) << what;
 }
 
+// The reference RleDeflate is held to: zlib itself, one deflate() call over all of `data`.
+std::vector<uint8_t> zlib_run_length(std::span<const uint8_t> data, bool last, int level = 1) {
+    z_stream z{};
+    EXPECT_EQ(deflateInit2(&z, level, Z_DEFLATED, -15, 9, Z_RLE), Z_OK);
+    std::vector<uint8_t> out(deflateBound(&z, uLong(data.size())) + 64);
+    z.next_in = const_cast<uint8_t*>(data.data());
+    z.avail_in = uInt(data.size());
+    z.next_out = out.data();
+    z.avail_out = uInt(out.size());
+    const int status = deflate(&z, last ? Z_FINISH : Z_SYNC_FLUSH);
+    EXPECT_EQ(status, last ? Z_STREAM_END : Z_OK);
+    out.resize(out.size() - z.avail_out);
+    deflateEnd(&z);
+    return out;
+}
+
+// Byte strings of every kind RleDeflate must code as zlib does: runs of every length around
+// the 3..258 limits, literals, incompressible stretches (stored blocks), and frequencies that
+// overflow 15-bit codes.
+std::vector<std::pair<std::string, std::vector<uint8_t>>> deflate_inputs() {
+    std::vector<std::pair<std::string, std::vector<uint8_t>>> inputs;
+    std::mt19937 rng(11);
+    const auto random_bytes = [&](size_t n) {
+        std::vector<uint8_t> v(n);
+        for (uint8_t& b : v) b = uint8_t(rng());
+        return v;
+    };
+    for (size_t n : {size_t(0), size_t(1), size_t(2), size_t(3), size_t(4), size_t(65), size_t(66), size_t(67),
+                     size_t(259), size_t(300)}) {
+        inputs.emplace_back("random " + std::to_string(n), random_bytes(n));
+        inputs.emplace_back("zeros " + std::to_string(n), std::vector<uint8_t>(n, 0));
+    }
+    // Around the block size (32767 symbols) and the window's slide (64 KiB - 262), and more
+    // than the window: random bytes are all literals, so blocks end exactly there.
+    for (size_t n : {size_t(32766), size_t(32767), size_t(32768), size_t(65273), size_t(65274), size_t(65280),
+                     size_t(70000), size_t(200000)})
+        inputs.emplace_back("random " + std::to_string(n), random_bytes(n));
+    inputs.emplace_back("zeros 1M", std::vector<uint8_t>(size_t(1) << 20, 7));
+    // Runs of random lengths (1 .. 600) of random bytes from a small alphabet.
+    for (int alphabet : {2, 5, 256}) {
+        std::vector<uint8_t> v;
+        while (v.size() < 300000) v.insert(v.end(), size_t(1 + rng() % 600), uint8_t(rng() % unsigned(alphabet)));
+        inputs.emplace_back("runs over " + std::to_string(alphabet), v);
+    }
+    // Short runs only (1 .. 4), where literals and matches alternate.
+    {
+        std::vector<uint8_t> v;
+        while (v.size() < 150000) v.insert(v.end(), size_t(1 + rng() % 4), uint8_t(rng() % 16));
+        inputs.emplace_back("short runs", v);
+    }
+    // Fibonacci frequencies: the Huffman depths exceed 15 and must be limited.
+    {
+        std::vector<uint8_t> v;
+        uint32_t a = 1, b = 1;
+        for (int sym = 0; sym < 22; ++sym) {
+            v.insert(v.end(), a, uint8_t(sym * 11));
+            const uint32_t c = a + b;
+            a = b;
+            b = c;
+        }
+        std::shuffle(v.begin(), v.end(), rng);
+        inputs.emplace_back("fibonacci", v);
+    }
+    // Filtered image rows, as the PNG encoder hands them over.
+    {
+        const int w = 640;
+        const std::vector<uint8_t> p = test_pixels(w, 64, 4, 5);
+        std::vector<uint8_t> v;
+        for (int y = 0; y < 64; ++y) {
+            v.push_back(4);
+            for (int x = 0; x < 4 * w; ++x) v.push_back(uint8_t(p[size_t(y * 4 * w + x)] - (x >= 4 ? p[size_t(y * 4 * w + x - 4)] : 0)));
+        }
+        inputs.emplace_back("image rows", v);
+    }
+    return inputs;
+}
+
 }  // namespace
+
+TEST(RleDeflate, SameBytesAsZlibRunLength) {
+    output::RleDeflate deflate;
+    for (const auto& [what, data] : deflate_inputs())
+        for (bool last : {false, true}) {
+            const std::span<const uint8_t> ours = deflate.compress(data, last);
+            const std::vector<uint8_t> zlib = zlib_run_length(data, last);
+            ASSERT_EQ(std::vector<uint8_t>(ours.begin(), ours.end()), zlib) << what << (last ? ", last" : "");
+        }
+    // zlib's level does not change run-length matching.
+    const std::vector<uint8_t> data = deflate_inputs().back().second;
+    const std::span<const uint8_t> ours = deflate.compress(data, true);
+    EXPECT_EQ(std::vector<uint8_t>(ours.begin(), ours.end()), zlib_run_length(data, true, 9));
+}
+
+TEST(Adler32, EqualsZlibsForEveryLengthAndStart) {
+    std::mt19937 rng(5);
+    std::vector<uint8_t> data(20000);
+    for (uint8_t& b : data) b = uint8_t(rng());
+    std::vector<uint8_t> ones(20000, 0xFF);  // the largest sums
+    for (const std::vector<uint8_t>* d : {&data, &ones})
+        for (size_t n : {size_t(0), size_t(1), size_t(31), size_t(32), size_t(33), size_t(5551), size_t(5552),
+                         size_t(5553), size_t(11104), size_t(20000)}) {
+            EXPECT_EQ(output::adler32_update(1, d->data(), n), uint32_t(adler32(1, d->data(), uInt(n)))) << n;
+            // Continued from a checksum part way.
+            const uint32_t start = uint32_t(adler32(1, d->data(), 1000));
+            EXPECT_EQ(output::adler32_update(start, d->data() + 1000, n / 2),
+                      uint32_t(adler32(start, d->data() + 1000, uInt(n / 2)))) << n;
+        }
+}
 
 TEST(PngEncoder, DecodesToTheSamplesForEveryFilterLevelAndChannelCount) {
     // 150 rows: two full bands of kPngBandRows and a partial one.

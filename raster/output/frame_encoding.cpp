@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cctype>
 #include <cmath>
+#include <optional>
 #include <string>
 
 #include "raster/core/atomic_file.h"
@@ -78,15 +79,18 @@ OwnedImage encode_frame(const std::filesystem::path& path, const Frame& frame) {
     return image;
 }
 
-void write_encoded(const std::filesystem::path& path, const OwnedImage& image, const FileSettings& settings) {
+void write_encoded(const std::filesystem::path& path, const OwnedImage& image, const FileSettings& settings,
+                   PngEncoder* png) {
     if (lower_extension(path) == ".png" && image.type == io::PixelType::u8 && image.width > 0 && image.height > 0) {
-        std::vector<uint8_t> file;
+        std::optional<PngEncoder> own;
+        if (!png) png = &own.emplace(settings.png);
+        std::span<const uint8_t> file;
         try {
-            file = encode_png(image.bytes.data(), image.width, image.height, image.channels, settings.png);
+            file = png->encode(image.bytes.data(), image.width, image.height, image.channels);
         } catch (const std::exception& e) {
             throw Error("cannot write '" + path.string() + "': " + e.what());
         }
-        write_file_atomically(path, std::as_bytes(std::span(file.data(), file.size())));
+        write_file_atomically(path, std::as_bytes(file));
         return;
     }
     io::write_image(path, image.view());

@@ -39,8 +39,9 @@ OwnedImage encode_frame(const std::filesystem::path& path, const Frame& frame);
 
 // Writes an image encode_frame made for `path`: PNG through png_encoder.h, other formats
 // through OpenImageIO (io/image_io.h); atomically either way. Throws tessera::Error naming
-// the file.
-void write_encoded(const std::filesystem::path& path, const OwnedImage& image, const FileSettings& settings = {});
+// the file. `png`: an encoder (made with settings.png) whose buffers to reuse, or null.
+void write_encoded(const std::filesystem::path& path, const OwnedImage& image, const FileSettings& settings = {},
+                   PngEncoder* png = nullptr);
 
 // encode_frame + write_encoded. Throws tessera::Error (unwritable path, unknown extension)
 // naming the file.

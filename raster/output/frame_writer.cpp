@@ -6,7 +6,7 @@
 namespace tessera::output {
 
 FrameWriter::FrameWriter(size_t max_pending, const FileSettings& settings)
-    : max_pending_(max_pending == 0 ? 1 : max_pending), settings_(settings), worker_([this] { run(); }) {}
+    : max_pending_(max_pending == 0 ? 1 : max_pending), settings_(settings), png_(settings.png), worker_([this] { run(); }) {}
 
 FrameWriter::~FrameWriter() {
     {
@@ -64,7 +64,7 @@ void FrameWriter::run() {
         std::exception_ptr failure;
         try {
             TraceScope scope("write frame", "io");
-            write_encoded(job.path, job.image, settings_);
+            write_encoded(job.path, job.image, settings_, &png_);
         } catch (...) {
             failure = std::current_exception();
         }

@@ -58,6 +58,7 @@ private:
 
     const size_t max_pending_;
     const FileSettings settings_;
+    PngEncoder png_;  // the worker's, its buffers kept from frame to frame
     mutable std::mutex mutex_;
     std::condition_variable changed_;
     std::deque<Job> queue_;
