@@ -448,7 +448,7 @@ FrameLoop::Outcome FrameLoop::render_in_memory(int f, const fs::path& path, rend
         return Outcome::stop;
     }
     try {
-        writer_.submit(path, output::encode_frame(path, frame));
+        writer_.submit(path, output::encode_frame(path, frame, writer_.spare_bytes()));
         submitted_.emplace_back(path, f);
     } catch (const Error& e) {
         if (dist_.ranks() == 1) throw;

@@ -263,6 +263,35 @@ TEST(Srgb8, FrameEncodingEqualsTheDefinitionPerChannel) {
     }
 }
 
+TEST(Srgb8, LaneEncodingEqualsTheTableForEveryChannelAcrossTheRange) {
+    // Every 4099th float of [0, 2] and the special values, each in every channel position
+    // (the lanes' alpha selection), through the lane loop and its scalar tail (odd pixel count).
+    std::vector<float> values;
+    for (uint32_t b = 0; b <= std::bit_cast<uint32_t>(2.0f); b += 4099) values.push_back(std::bit_cast<float>(b));
+    for (float c : {-0.0f, -1.0f, 1.0f, 7.0f, std::numeric_limits<float>::infinity(),
+                    -std::numeric_limits<float>::infinity(), std::numeric_limits<float>::denorm_min(),
+                    std::numeric_limits<float>::quiet_NaN(), -std::numeric_limits<float>::quiet_NaN()})
+        values.push_back(c);
+    for (int shift = 0; shift < 4; ++shift) {
+        std::vector<glm::vec4> pixels((values.size() + size_t(shift)) / 4 | 1, glm::vec4(0.5f));
+        float* flat = &pixels[0].x;
+        for (size_t i = 0; i < values.size() && i + size_t(shift) < 4 * pixels.size(); ++i)
+            flat[i + size_t(shift)] = values[i];
+        std::vector<uint8_t> bytes(4 * pixels.size());
+        const bool finite = output::encode_srgb8(pixels.data(), pixels.size(), bytes.data());
+        bool all_finite = true;
+        for (size_t i = 0; i < bytes.size(); ++i) {
+            all_finite &= std::isfinite(flat[i]);
+            ASSERT_EQ(bytes[i], i % 4 == 3 ? output::alpha8(flat[i]) : output::srgb8_reference(flat[i]))
+                << flat[i] << " at " << i;
+        }
+        EXPECT_EQ(finite, all_finite);
+    }
+    std::vector<glm::vec4> ordinary(33, glm::vec4(0.25f, 0.5f, 1.5f, -1.0f));
+    std::vector<uint8_t> bytes(4 * ordinary.size());
+    EXPECT_TRUE(output::encode_srgb8(ordinary.data(), ordinary.size(), bytes.data()));
+}
+
 TEST(PngEncoder, WriteFrameGoesThroughItAndFailsWithoutAHalfFile) {
     Frame frame(70, 66, glm::vec4(0.25f, 0.5f, 1.0f, 1.0f));
     const fs::path dir = fs::temp_directory_path() / "tessera_output_png_frames";

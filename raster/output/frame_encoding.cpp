@@ -36,9 +36,6 @@ std::string lower_extension(const std::filesystem::path& path) {
 }  // namespace
 
 std::vector<uint8_t> encode_srgb8(const Frame& frame) {
-    // One thread: a table lookup per value (a few ms for 1080p) is not worth a parallel loop
-    // here, and this runs on the background writers, whose synchronisation ThreadSanitizer
-    // checks (make tsan); oneTBB's uninstrumented workers would show as races there.
     std::vector<uint8_t> out(frame.pixels.size() * 4);
     encode_srgb8(frame.pixels.data(), frame.pixels.size(), out.data());
     return out;
@@ -56,25 +53,39 @@ bool frame_format_supported(const std::filesystem::path& path) {
     return lower_extension(path) == ".png" || io::image_format_supported(path);
 }
 
-OwnedImage encode_frame(const std::filesystem::path& path, const Frame& frame) {
+OwnedImage encode_frame(const std::filesystem::path& path, const Frame& frame, std::vector<uint8_t> storage) {
     // A frame holding NaN or Inf (a value of the scene that overflowed float, or a bug) is never
     // written: an EXR would carry it on into compositing, 8-bit encodings would hide it as
     // black or white. Finite values are what every renderer stage is meant to produce.
-    size_t non_finite = 0;
-    for (const glm::vec4& p : frame.pixels)
-        non_finite += !(std::isfinite(p.r) && std::isfinite(p.g) && std::isfinite(p.b) && std::isfinite(p.a));
-    if (non_finite > 0)
-        throw Error("cannot write '" + path.string() + "': " + std::to_string(non_finite) +
-                    " pixel(s) came out NaN or infinite (a value of the scene overflows single precision)");
-    OwnedImage image{frame.width, frame.height, 4, frame_pixel_type(path), {}};
+    const auto refuse_non_finite = [&] {
+        size_t non_finite = 0;
+        for (const glm::vec4& p : frame.pixels)
+            non_finite += !(std::isfinite(p.r) && std::isfinite(p.g) && std::isfinite(p.b) && std::isfinite(p.a));
+        if (non_finite > 0)
+            throw Error("cannot write '" + path.string() + "': " + std::to_string(non_finite) +
+                        " pixel(s) came out NaN or infinite (a value of the scene overflows single precision)");
+    };
+    OwnedImage image{frame.width, frame.height, 4, frame_pixel_type(path), std::move(storage)};
     const auto keep = [&image](const auto& values) {
         const auto* bytes = reinterpret_cast<const uint8_t*>(values.data());
         image.bytes.assign(bytes, bytes + values.size() * sizeof(values[0]));
     };
     switch (image.type) {
-        case io::PixelType::f32: keep(frame.pixels); break;
-        case io::PixelType::u16: keep(encode_srgb16(frame)); break;
-        case io::PixelType::u8: image.bytes = encode_srgb8(frame); break;
+        case io::PixelType::f32:
+            refuse_non_finite();
+            keep(frame.pixels);
+            break;
+        case io::PixelType::u16:
+            refuse_non_finite();
+            keep(encode_srgb16(frame));
+            break;
+        case io::PixelType::u8:
+            // One pass: the encoder reports non-finite values, which are counted only then.
+            // One thread: it runs on the background writers, whose synchronisation
+            // ThreadSanitizer checks (make tsan); oneTBB's workers would show as races there.
+            image.bytes.resize(frame.pixels.size() * 4);  // a recycled buffer keeps its pages
+            if (!encode_srgb8(frame.pixels.data(), frame.pixels.size(), image.bytes.data())) refuse_non_finite();
+            break;
     }
     return image;
 }

@@ -34,8 +34,10 @@ io::PixelType frame_pixel_type(const std::filesystem::path& path);
 bool frame_format_supported(const std::filesystem::path& path);
 
 // The frame encoded as `path`'s extension asks (see above), ready for write_image or for the
-// background FrameWriter (frame_writer.h).
-OwnedImage encode_frame(const std::filesystem::path& path, const Frame& frame);
+// background FrameWriter (frame_writer.h), in `storage` (a buffer to reuse, e.g.
+// FrameWriter::spare_bytes(): one of the frame's size is written over without being cleared
+// or faulted in again). Throws tessera::Error, naming the file, for a NaN or infinite value.
+OwnedImage encode_frame(const std::filesystem::path& path, const Frame& frame, std::vector<uint8_t> storage = {});
 
 // Writes an image encode_frame made for `path`: PNG through png_encoder.h, other formats
 // through OpenImageIO (io/image_io.h); atomically either way. Throws tessera::Error naming

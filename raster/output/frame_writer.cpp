@@ -50,6 +50,14 @@ void FrameWriter::record_written(std::filesystem::path path) {
     written_.push_back(std::move(path));
 }
 
+std::vector<uint8_t> FrameWriter::spare_bytes() {
+    std::lock_guard lock(mutex_);
+    if (spare_.empty()) return {};
+    std::vector<uint8_t> bytes = std::move(spare_.back());
+    spare_.pop_back();
+    return bytes;
+}
+
 void FrameWriter::run() {
     for (;;) {
         Job job;
@@ -77,6 +85,7 @@ void FrameWriter::run() {
             } else {
                 written_.push_back(job.path);
             }
+            if (spare_.size() <= max_pending_) spare_.push_back(std::move(job.image.bytes));
         }
         changed_.notify_all();
     }

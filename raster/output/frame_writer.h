@@ -47,6 +47,9 @@ public:
     // Adds a frame the caller wrote itself (streamed band by band, image_stream.h), so that
     // written() stays the one list of finished frames.
     void record_written(std::filesystem::path path);
+    // The pixel buffer of a frame already written, to encode the next one into (encode_frame):
+    // its pages stay mapped from frame to frame. Empty when none is free.
+    std::vector<uint8_t> spare_bytes();
 
 private:
     struct Job {
@@ -66,6 +69,7 @@ private:
     bool stopping_ = false;
     std::exception_ptr failure_;
     std::vector<std::filesystem::path> written_;
+    std::vector<std::vector<uint8_t>> spare_;  // buffers of written frames, at most max_pending_ + 1
     std::thread worker_;
 };
 
