@@ -1,5 +1,6 @@
 #include "raster/render/frame_renderer.h"
 
+#include <tbb/blocked_range.h>
 #include <tbb/enumerable_thread_specific.h>
 #include <tbb/parallel_for.h>
 
@@ -519,12 +520,19 @@ void FrameRenderer::Impl::render_region(const FrameState& frame, const Region& r
         });
         stats.tiles_ms += ms_since(t0);
     }
-    if (shade::any_outlined(scene.scene.materials)) {
+    if (const shade::OutlinePass outlines(visibility, region.camera, frame.baked.triangle_material,
+                                          scene.scene.materials);
+        outlines.active()) {
         // Over the finished pixels (after fog): it reads the neighbours' depths, across tiles.
         TraceScope trace("outlines");
         const auto t0 = Clock::now();
-        shade::draw_outlines(visibility, region.camera, frame.baked.triangle_material, scene.scene.materials, colour,
-                             rows_from, rows_to);
+        const int first = std::max(rows_from, 0), last = std::min(rows_to, h);
+        if (first < last)
+            tbb::parallel_for(tbb::blocked_range<int>(first, last, 8), [&](const tbb::blocked_range<int>& rows) {
+                const TimedTile tile_time(clock);
+                const TimedPass timed(clock, TilePass::outline);
+                outlines.run(colour, rows.begin(), rows.end());
+            });
         stats.tiles_ms += ms_since(t0);
     }
     stats.shadowed_pixels += shadowed.load();
