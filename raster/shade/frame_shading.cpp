@@ -118,16 +118,29 @@ void FrameShading::shade_with(std::span<const CoveredPixel> pixels, std::span<gl
 
     // Group by material, keeping the pixels' order within a group (counting sort); the
     // last bucket collects pixels without a valid triangle.
-    std::vector<uint32_t> count(material_count + 2, 0);
+    // Neighbouring pixels mostly share a material: counted by runs, a tile of one material
+    // costs no increment per pixel, and needs no sort.
+    thread_local std::vector<uint32_t> count, order, next;
+    count.assign(material_count + 2, 0);
     const auto bucket = [&](const CoveredPixel& f) {
         return f.triangle < baked_.triangle_material.size() ? size_t(baked_.triangle_material[f.triangle])
                                                             : material_count;
     };
-    for (const CoveredPixel& f : pixels) ++count[bucket(f) + 1];
+    size_t buckets_used = 0;
+    for (size_t i = 0; i < pixels.size();) {
+        const size_t b = bucket(pixels[i]);
+        size_t end = i + 1;
+        while (end < pixels.size() && bucket(pixels[end]) == b) ++end;
+        buckets_used += count[b + 1] == 0;
+        count[b + 1] += uint32_t(end - i);
+        i = end;
+    }
     for (size_t i = 1; i < count.size(); ++i) count[i] += count[i - 1];
-    std::vector<uint32_t> order(pixels.size());
-    {
-        std::vector<uint32_t> next(count.begin(), count.end() - 1);
+    order.resize(pixels.size());
+    if (buckets_used <= 1) {
+        for (size_t i = 0; i < pixels.size(); ++i) order[i] = uint32_t(i);
+    } else {
+        next.assign(count.begin(), count.end() - 1);
         for (size_t i = 0; i < pixels.size(); ++i) order[next[bucket(pixels[i])]++] = uint32_t(i);
     }
     for (size_t i = count[material_count]; i < pixels.size(); ++i)
@@ -148,6 +161,47 @@ void FrameShading::shade_with(std::span<const CoveredPixel> pixels, std::span<gl
             const int n = int(std::min<size_t>(kLanes, count[mat + 1] - start));
             uint32_t setup_for = kNoTriangle;  // consecutive pixels often share a triangle
             pipeline::PerspectiveBarycentrics setup{};
+            if constexpr (!std::is_same_v<F, float>) {
+                // All lanes on one triangle (most of them, on triangles wider than the lanes):
+                // its corners' attributes are broadcast, a vector store each, instead of being
+                // written lane by lane. The values are the lane-by-lane path's.
+                const uint32_t triangle = pixels[order[start]].triangle;
+                bool uniform = true;
+                for (int lane = 1; lane < n; ++lane) uniform &= pixels[order[start + size_t(lane)]].triangle == triangle;
+                if (uniform) {
+                    for (int lane = 0; lane < kLanes; ++lane) {
+                        const CoveredPixel& f = pixels[order[start + size_t(lane < n ? lane : 0)]];
+                        lanes.x[lane] = float(f.x) + 0.5f;
+                        lanes.y[lane] = float(f.y) + 0.5f;
+                    }
+                    const uint32_t* corner = &mesh.indices[3 * size_t(triangle)];
+                    setup = pipeline::PerspectiveBarycentrics::from_clip(clip_[corner[0]], clip_[corner[1]], clip_[corner[2]],
+                                                                         state_.width, state_.height);
+                    const auto fill = [](float* lanes_of, float v) { F(v).store(lanes_of); };
+                    for (int k = 0; k < 3; ++k) {
+                        const uint32_t vi = corner[k];
+                        const glm::vec3 p = mesh.positions[vi];
+                        const glm::vec3 nrm = mesh.normals.empty() ? glm::vec3(0.0f) : mesh.normals[vi];
+                        for (int a = 0; a < 3; ++a) {
+                            fill(lanes.bary[k][a], setup.e[k][a]);
+                            fill(lanes.pos[k][a], p[a]);
+                            fill(lanes.nrm[k][a], nrm[a]);
+                        }
+                        if (needs_uv) {
+                            const glm::vec2 uv = mesh.uvs.empty() ? glm::vec2(0.0f) : mesh.uvs[vi];
+                            fill(lanes.uv[k][0], uv.x);
+                            fill(lanes.uv[k][1], uv.y);
+                        }
+                        if (needs_colour)
+                            for (int a = 0; a < 3; ++a) fill(lanes.col[k][a], gouraud_[vi][a]);
+                    }
+                    shade::shade_lanes<F>(ctx, lanes, 0);
+                    for (int lane = 0; lane < n; ++lane)
+                        out[order[start + size_t(lane)]] = {lanes.out[0][lane], lanes.out[1][lane], lanes.out[2][lane],
+                                                            lanes.out[3][lane]};
+                    continue;
+                }
+            }
             for (int lane = 0; lane < kLanes; ++lane) {
                 // Idle lanes repeat the first pixel so every lane computes finite values.
                 const CoveredPixel& f = pixels[order[start + size_t(lane < n ? lane : 0)]];
@@ -216,7 +270,10 @@ void shade_background_reference(const FrameShading& shading, const Tile& tile) {
 }
 
 void shade_surfaces(const FrameShading& shading, const Tile& tile) {
-    std::vector<CoveredPixel> pixels;
+    // Per thread, kept from tile to tile.
+    thread_local std::vector<CoveredPixel> pixels;
+    thread_local std::vector<glm::vec4> colours;
+    pixels.clear();
     pixels.reserve(size_t(tile.width()) * size_t(tile.height()));
     for (int y = tile.rect.y0; y < tile.rect.y1; ++y)
         for (int x = tile.rect.x0; x < tile.rect.x1; ++x) {
@@ -224,7 +281,7 @@ void shade_surfaces(const FrameShading& shading, const Tile& tile) {
             const uint32_t id = tile.triangle_at(x, y);
             if (id != kNoTriangle) pixels.push_back({x, y, id});
         }
-    std::vector<glm::vec4> colours(pixels.size());
+    colours.resize(pixels.size());
     shading.shade(pixels, colours);
     for (size_t i = 0; i < pixels.size(); ++i) {
         const CoveredPixel& f = pixels[i];
