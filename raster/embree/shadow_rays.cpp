@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <vector>
 
 #include "raster/embree/packets.h"
 
@@ -41,31 +42,37 @@ void trace_single(RTCScene scene, const shadow::SurfacePoints& points, const glm
     }
 }
 
+// The points that face the light, in order: packets are filled with them only, so no lane
+// is spent on a point the light cannot reach (and consecutive points stay neighbours).
+void facing_points(const shadow::SurfacePoints& points, const glm::vec3& light, uint8_t bit,
+                   std::vector<uint32_t>& out) {
+    out.clear();
+    const bool known = points.facing.size() == points.size();  // gathered with the lights
+    for (size_t i = 0; i < points.size(); ++i)
+        if (known ? (points.facing[i] & bit) != 0 : shadow::faces_light(points.position[i], points.normal[i], light))
+            out.push_back(uint32_t(i));
+}
+
 template <int N>
 void trace_packets(RTCScene scene, const shadow::SurfacePoints& points, const glm::vec3& light,
                    uint8_t bit, std::span<uint8_t> visible) {
     using P = Packet<N>;
     RTCIntersectContext context = coherent_context();
-    for (size_t first = 0; first < points.size(); first += N) {
+    thread_local std::vector<uint32_t> traced;
+    facing_points(points, light, bit, traced);
+    for (size_t first = 0; first < traced.size(); first += N) {
         typename P::Ray packet;
         alignas(64) int valid[N];
-        int active = 0;
         for (int lane = 0; lane < N; ++lane) {
-            const size_t i = first + size_t(lane);
-            valid[lane] = i < points.size() &&
-                                  shadow::faces_light(points.position[i], points.normal[i], light)
-                              ? -1
-                              : 0;
-            active += valid[lane] != 0;
-            const ShadowRay r = valid[lane]
-                                    ? shadow_ray(points.position[i], points.normal[i], light)
-                                    : ShadowRay{glm::vec3(0.0f), glm::vec3(0.0f, 0.0f, 1.0f)};
+            const size_t k = first + size_t(lane);
+            valid[lane] = k < traced.size() ? -1 : 0;
+            const ShadowRay r = valid[lane] ? shadow_ray(points.position[traced[k]], points.normal[traced[k]], light)
+                                            : ShadowRay{glm::vec3(0.0f), glm::vec3(0.0f, 0.0f, 1.0f)};
             set_lane(packet, lane, r.origin, r.direction, 0.0f, 1.0f);
         }
-        if (active == 0) continue;
         P::occluded(valid, scene, &context, &packet);
         for (int lane = 0; lane < N; ++lane)
-            if (valid[lane] && packet.tfar[lane] >= 0.0f) visible[first + size_t(lane)] |= bit;
+            if (valid[lane] && packet.tfar[lane] >= 0.0f) visible[traced[first + size_t(lane)]] |= bit;
     }
 }
 

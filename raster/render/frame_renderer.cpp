@@ -375,21 +375,26 @@ void FrameRenderer::Impl::shade_shadows(const FrameState& frame, const RegionPas
                                         const VisibilityBuffer& visibility, const Tile& tile,
                                         std::atomic<uint64_t>& shadowed) const {
     TraceScope t("shadow test", "tile");
-    shadow::SurfacePoints points;
-    shadow::gather_surface_points(tile, size_t(visibility.width), frame.baked.mesh, passes.pixel_rays, points);
-    std::vector<uint8_t> lit(points.size(), 0), facing(points.size(), 0);
-    shadow::facing_lights(points, frame.light_targets, facing);
+    // Per thread, kept from tile to tile.
+    thread_local shadow::SurfacePoints points;
+    thread_local std::vector<uint8_t> lit;
+    thread_local std::vector<std::vector<shade::CoveredPixel>> groups;
+    thread_local std::vector<glm::vec4> colours;
+    shadow::gather_surface_points(tile, size_t(visibility.width), frame.baked.mesh, passes.pixel_rays, points,
+                                  frame.light_targets);
+    lit.assign(points.size(), 0);
     frame.light_test(points, frame.light_targets, lit);
     const uint32_t all_lit = passes.all_lit;
-    std::vector<std::vector<shade::CoveredPixel>> groups(all_lit);
+    groups.resize(std::max<size_t>(groups.size(), all_lit));
+    for (uint32_t mask = 0; mask < all_lit; ++mask) groups[mask].clear();
     const uint32_t w = uint32_t(visibility.width);
+    const std::vector<uint8_t>& facing = points.facing;
     for (size_t i = 0; i < points.size(); ++i) {
         const uint32_t mask = (lit[i] | ~facing[i]) & all_lit;
         if (mask == all_lit) continue;
         const uint32_t p = points.pixel[i];
         groups[mask].push_back({int(p % w), int(p / w), tile.triangle_at(int(p % w), int(p / w))});
     }
-    std::vector<glm::vec4> colours;
     for (uint32_t mask = 0; mask < all_lit; ++mask) {
         if (groups[mask].empty()) continue;
         colours.resize(groups[mask].size());
