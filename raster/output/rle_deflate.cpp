@@ -319,14 +319,11 @@ size_t run_length(const uint8_t* d, size_t p, size_t cap) {
 }  // namespace
 
 struct RleDeflate::Trees {
-    std::array<uint32_t, kLiteralCodes> literal_freq{};  // of the block in hand
     Tree literal, distance, code_length;
     HuffmanBuilder builder;
     // Per symbol (a byte, or 256 + match length - 3): its bits and their count, for the block's
     // codes (a match's length code, extra bits and distance code together).
     std::array<uint64_t, 512> symbol_bits{};
-
-    Trees() { literal_freq[kEndOfBlock] = 1; }
 
     void set_symbol_bits(const Tree& lit, const Tree& dist) {
         for (int c = 0; c < 256; ++c)
@@ -409,17 +406,43 @@ void RleDeflate::fill_window() {
     } while (read_ - position_ < kMinLookahead && read_ < size_);
 }
 
-void RleDeflate::literal(uint8_t byte) {
-    symbols_[symbol_count_++] = byte;
-    ++trees_->literal_freq[byte];
-}
+void RleDeflate::literal(uint8_t byte) { symbols_[symbol_count_++] = byte; }
 
 void RleDeflate::match(size_t length) {
-    const size_t lc = length - kMinMatch;
-    symbols_[symbol_count_++] = uint16_t(256 + lc);
-    ++trees_->literal_freq[size_t(257 + kLengths.code[lc])];
+    symbols_[symbol_count_++] = uint16_t(256 + length - kMinMatch);
     ++match_count_;
 }
+
+namespace {
+
+// k literals: bytes widened to symbols, a loop the compiler vectorises (kept out of line, where
+// the __restrict parameters keep their meaning).
+[[gnu::noinline]] void widen(const uint8_t* __restrict from, uint16_t* __restrict to, size_t k) {
+    for (size_t i = 0; i < k; ++i) to[i] = from[i];
+}
+
+// The literal/length code of each symbol (a byte, or 256 + match length - 3).
+struct SymbolCodes {
+    std::array<uint16_t, 512> code{};
+    SymbolCodes() {
+        for (int c = 0; c < 256; ++c) code[size_t(c)] = uint16_t(c);
+        for (int lc = 0; lc < 256; ++lc) code[size_t(256 + lc)] = uint16_t(257 + kLengths.code[size_t(lc)]);
+    }
+};
+const SymbolCodes kSymbolCodes;
+
+// The block's literal/length code frequencies, counted into four tables in turn so that
+// runs of one symbol do not chain their increments through one counter.
+void count_codes(const uint16_t* symbols, size_t n, uint32_t* freq) {
+    std::array<std::array<uint32_t, kLiteralCodes>, 4> part{};
+    size_t i = 0;
+    for (; i + 4 <= n; i += 4)
+        for (size_t k = 0; k < 4; ++k) ++part[k][kSymbolCodes.code[symbols[i + k]]];
+    for (; i < n; ++i) ++part[0][kSymbolCodes.code[symbols[i]]];
+    for (size_t c = 0; c < size_t(kLiteralCodes); ++c) freq[c] = part[0][c] + part[1][c] + part[2][c] + part[3][c];
+}
+
+}  // namespace
 
 std::span<const uint8_t> RleDeflate::compress(std::span<const uint8_t> data, bool last) {
     data_ = data.data();
@@ -441,7 +464,8 @@ std::span<const uint8_t> RleDeflate::compress(std::span<const uint8_t> data, boo
             // does: at the first symbol with at most kMaxMatch bytes ahead).
             const size_t max = std::min(ahead > kMaxMatch ? ahead - kMaxMatch : 1, kBlockSymbols - symbol_count_);
             const size_t k = literals_before_run(d, position_, max, size_);
-            for (size_t i = 0; i < k; ++i) literal(d[position_ + i]);
+            widen(d + position_, symbols_.data() + symbol_count_, k);
+            symbol_count_ += k;
             position_ += k;
             if (symbol_count_ == kBlockSymbols) {
                 flush_block(false);
@@ -474,7 +498,8 @@ std::span<const uint8_t> RleDeflate::compress(std::span<const uint8_t> data, boo
 void RleDeflate::flush_block(bool last) {
     Trees& t = *trees_;
     BlockBits bits;
-    std::copy(t.literal_freq.begin(), t.literal_freq.end(), t.literal.freq.begin());
+    count_codes(symbols_.data(), symbol_count_, t.literal.freq.data());
+    t.literal.freq[kEndOfBlock] = 1;
     t.distance.freq.fill(0);
     t.distance.freq[0] = match_count_;
     t.builder.build(t.literal, kLiteralAlphabet, bits);
@@ -525,15 +550,29 @@ void RleDeflate::flush_block(bool last) {
             code_length_runs(t.distance.length.data(), t.distance.max_code, send);
         }
         t.set_symbol_bits(*lit, *dist);
-        for (size_t i = 0; i < symbol_count_; ++i) {
-            const uint64_t e = t.symbol_bits[symbols_[i]];
-            put_bits(e & 0xFFFFFFFFu, int(e >> 32));
+        // The symbols, branch-free: eight bytes stored at every step, the pointer moved by the
+        // whole bytes (at most 7 + 32 bits are pending; reserve() leaves 8 bytes of slack).
+        uint64_t buffer = bit_buffer_;
+        unsigned count = unsigned(bit_count_);
+        uint8_t* o = out_.data() + out_size_;
+        const uint64_t* table = t.symbol_bits.data();
+        const uint16_t* symbol = symbols_.data();  // locals: the stores below cannot move them
+        const size_t n = symbol_count_;
+        for (size_t i = 0; i < n; ++i) {
+            const uint64_t e = table[symbol[i]];
+            buffer |= (e & 0xFFFFFFFFu) << count;
+            count += unsigned(e >> 32);
+            std::memcpy(o, &buffer, 8);
+            o += count >> 3;
+            buffer >>= count & ~7u;
+            count &= 7u;
         }
+        out_size_ = size_t(o - out_.data());
+        bit_buffer_ = buffer;
+        bit_count_ = int(count);
         put_bits(lit->code[kEndOfBlock], lit->length[kEndOfBlock]);
         if (last) align_to_byte();
     }
-    t.literal_freq.fill(0);
-    t.literal_freq[kEndOfBlock] = 1;
     match_count_ = 0;
     symbol_count_ = 0;
     block_start_ = position_;
