@@ -162,22 +162,33 @@ void FrameShading::shade_with(std::span<const CoveredPixel> pixels, std::span<gl
             uint32_t setup_for = kNoTriangle;  // consecutive pixels often share a triangle
             pipeline::PerspectiveBarycentrics setup{};
             if constexpr (!std::is_same_v<F, float>) {
-                // All lanes on one triangle (most of them, on triangles wider than the lanes):
-                // its corners' attributes are broadcast, a vector store each, instead of being
-                // written lane by lane. The values are the lane-by-lane path's.
-                const uint32_t triangle = pixels[order[start]].triangle;
-                bool uniform = true;
-                for (int lane = 1; lane < n; ++lane) uniform &= pixels[order[start + size_t(lane)]].triangle == triangle;
-                if (uniform) {
-                    for (int lane = 0; lane < kLanes; ++lane) {
+                // The lanes in runs of one triangle (all of them, on triangles wider than the
+                // lanes): each run's corner attributes are broadcast to its lanes with a masked
+                // vector store per attribute instead of being written lane by lane. The values
+                // are the lane-by-lane path's.
+                int lane = 0;
+                while (lane < kLanes) {
+                    const uint32_t triangle = pixels[order[start + size_t(lane < n ? lane : 0)]].triangle;
+                    const int first = lane;
+                    for (; lane < kLanes; ++lane) {
                         const CoveredPixel& f = pixels[order[start + size_t(lane < n ? lane : 0)]];
+                        if (f.triangle != triangle) break;
                         lanes.x[lane] = float(f.x) + 0.5f;
                         lanes.y[lane] = float(f.y) + 0.5f;
                     }
+                    const simd::vint index = simd::lane_index();
+                    const simd::vmask run = (simd::vint(first) < index + simd::vint(1)) & (index < simd::vint(lane));
+                    const bool whole = first == 0 && lane == kLanes;
+                    const auto fill = [&](float* lanes_of, float v) {
+                        if (whole) F(v).store(lanes_of);
+                        else simd::store_masked(lanes_of, run, F(v));
+                    };
                     const uint32_t* corner = &mesh.indices[3 * size_t(triangle)];
-                    setup = pipeline::PerspectiveBarycentrics::from_clip(clip_[corner[0]], clip_[corner[1]], clip_[corner[2]],
-                                                                         state_.width, state_.height);
-                    const auto fill = [](float* lanes_of, float v) { F(v).store(lanes_of); };
+                    if (triangle != setup_for) {
+                        setup = pipeline::PerspectiveBarycentrics::from_clip(clip_[corner[0]], clip_[corner[1]],
+                                                                             clip_[corner[2]], state_.width, state_.height);
+                        setup_for = triangle;
+                    }
                     for (int k = 0; k < 3; ++k) {
                         const uint32_t vi = corner[k];
                         const glm::vec3 p = mesh.positions[vi];
@@ -195,12 +206,11 @@ void FrameShading::shade_with(std::span<const CoveredPixel> pixels, std::span<gl
                         if (needs_colour)
                             for (int a = 0; a < 3; ++a) fill(lanes.col[k][a], gouraud_[vi][a]);
                     }
-                    shade::shade_lanes<F>(ctx, lanes, 0);
-                    for (int lane = 0; lane < n; ++lane)
-                        out[order[start + size_t(lane)]] = {lanes.out[0][lane], lanes.out[1][lane], lanes.out[2][lane],
-                                                            lanes.out[3][lane]};
-                    continue;
                 }
+                shade::shade_lanes<F>(ctx, lanes, 0);
+                for (int l = 0; l < n; ++l)
+                    out[order[start + size_t(l)]] = {lanes.out[0][l], lanes.out[1][l], lanes.out[2][l], lanes.out[3][l]};
+                continue;
             }
             for (int lane = 0; lane < kLanes; ++lane) {
                 // Idle lanes repeat the first pixel so every lane computes finite values.
