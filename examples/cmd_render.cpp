@@ -431,10 +431,21 @@ FrameLoop::Outcome FrameLoop::render_in_memory(int f, const fs::path& path, rend
     Frame& frame = frame_;
     std::string failure = std::move(tile_failure_);
     tile_failure_.clear();
+    // 8-bit files of whole frames (not gathered from ranks as floats): encoded tile by tile
+    // by the renderer, into a buffer the writer has finished with.
+    const bool direct_8bit =
+        output::frame_pixel_type(path) == io::PixelType::u8 && plan_.mode != DistributeMode::tiles;
+    std::vector<uint8_t> bytes;
+    size_t non_finite = 0;
     try {
         farm_.simulate(f);
         TraceScope t("frame", "frame", f);
-        frame_renderer_.render(float(f) / plan_.fps, frame, &st);
+        if (direct_8bit) {
+            bytes = writer_.spare_bytes();
+            non_finite = frame_renderer_.render_srgb8(float(f) / plan_.fps, bytes, &st);
+        } else {
+            frame_renderer_.render(float(f) / plan_.fps, frame, &st);
+        }
     } catch (const std::exception& e) {
         if (dist_.ranks() == 1) throw;
         if (failure.empty()) failure = e.what();
@@ -448,7 +459,12 @@ FrameLoop::Outcome FrameLoop::render_in_memory(int f, const fs::path& path, rend
         return Outcome::stop;
     }
     try {
-        writer_.submit(path, output::encode_frame(path, frame, writer_.spare_bytes()));
+        if (direct_8bit) {
+            if (non_finite > 0) throw output::non_finite_frame_error(path, non_finite);
+            writer_.submit(path, output::OwnedImage{plan_.width, plan_.height, 4, io::PixelType::u8, std::move(bytes)});
+        } else {
+            writer_.submit(path, output::encode_frame(path, frame, writer_.spare_bytes()));
+        }
         submitted_.emplace_back(path, f);
     } catch (const Error& e) {
         if (dist_.ranks() == 1) throw;

@@ -53,6 +53,11 @@ bool frame_format_supported(const std::filesystem::path& path) {
     return lower_extension(path) == ".png" || io::image_format_supported(path);
 }
 
+Error non_finite_frame_error(const std::filesystem::path& path, size_t pixels) {
+    return Error("cannot write '" + path.string() + "': " + std::to_string(pixels) +
+                 " pixel(s) came out NaN or infinite (a value of the scene overflows single precision)");
+}
+
 OwnedImage encode_frame(const std::filesystem::path& path, const Frame& frame, std::vector<uint8_t> storage) {
     // A frame holding NaN or Inf (a value of the scene that overflowed float, or a bug) is never
     // written: an EXR would carry it on into compositing, 8-bit encodings would hide it as
@@ -61,9 +66,7 @@ OwnedImage encode_frame(const std::filesystem::path& path, const Frame& frame, s
         size_t non_finite = 0;
         for (const glm::vec4& p : frame.pixels)
             non_finite += !(std::isfinite(p.r) && std::isfinite(p.g) && std::isfinite(p.b) && std::isfinite(p.a));
-        if (non_finite > 0)
-            throw Error("cannot write '" + path.string() + "': " + std::to_string(non_finite) +
-                        " pixel(s) came out NaN or infinite (a value of the scene overflows single precision)");
+        if (non_finite > 0) throw non_finite_frame_error(path, non_finite);
     };
     OwnedImage image{frame.width, frame.height, 4, frame_pixel_type(path), std::move(storage)};
     const auto keep = [&image](const auto& values) {

@@ -14,6 +14,7 @@
 #include <filesystem>
 #include <vector>
 
+#include "raster/core/error.h"
 #include "raster/core/frame.h"
 #include "raster/output/frame_writer.h"
 #include "raster/output/png_encoder.h"
@@ -32,6 +33,9 @@ io::PixelType frame_pixel_type(const std::filesystem::path& path);
 // True when write_frame can write `path`: PNG, which tessera encodes itself (without loading
 // the image codec), or a format OpenImageIO writes.
 bool frame_format_supported(const std::filesystem::path& path);
+
+// The error for a frame with `pixels` NaN or infinite pixels, naming the file it was for.
+Error non_finite_frame_error(const std::filesystem::path& path, size_t pixels);
 
 // The frame encoded as `path`'s extension asks (see above), ready for write_image or for the
 // background FrameWriter (frame_writer.h), in `storage` (a buffer to reuse, e.g.

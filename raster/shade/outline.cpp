@@ -100,6 +100,20 @@ OutlinePass::OutlinePass(const VisibilityBuffer& visibility, const Camera& camer
 }
 
 void OutlinePass::run(std::vector<glm::vec4>& colour, int row_begin, int row_end) const {
+    run_rows(
+        [&](size_t i) {
+            glm::vec4& p = colour[i];
+            p = glm::vec4(0.0f, 0.0f, 0.0f, p.a);
+        },
+        row_begin, row_end);
+}
+
+void OutlinePass::run(uint8_t* rgba8, int row_begin, int row_end) const {
+    run_rows([&](size_t i) { rgba8[4 * i] = rgba8[4 * i + 1] = rgba8[4 * i + 2] = 0; }, row_begin, row_end);
+}
+
+template <class Ink>
+void OutlinePass::run_rows(const Ink& ink, int row_begin, int row_end) const {
     using simd::kLanes;
     using simd::vfloat;
     using simd::vint;
@@ -154,7 +168,7 @@ void OutlinePass::run(std::vector<glm::vec4>& colour, int row_begin, int row_end
     for (int y = row_begin; y < row_end; ++y) {
         if (y + 1 < h) load(y + 1, *below);
         const vmask up(y > 0), down(y + 1 < h);
-        glm::vec4* out = colour.data() + size_t(y) * size_t(w);
+        const size_t row = size_t(y) * size_t(w);
         for (int x = 0; x < w; x += kLanes) {
             const size_t c = size_t(x) + 1;  // this lane block's first pixel in the rows
             const vint column = vint(x) + lanes;
@@ -184,10 +198,8 @@ void OutlinePass::run(std::vector<glm::vec4>& colour, int row_begin, int row_end
             if (y > 0) inked = inked | (up & side(*above, c));
             if (y + 1 < h) inked = inked | (down & side(*below, c));
             if (y > 0 && y + 1 < h) inked = inked | crease(floats(&above->w[c]), floats(&below->w[c]));
-            for (uint32_t bits = simd::bits(inked & candidate); bits; bits &= bits - 1) {
-                glm::vec4& p = out[x + std::countr_zero(bits)];
-                p = glm::vec4(0.0f, 0.0f, 0.0f, p.a);
-            }
+            for (uint32_t bits = simd::bits(inked & candidate); bits; bits &= bits - 1)
+                ink(row + size_t(x + std::countr_zero(bits)));
         }
         std::swap(above, here);
         std::swap(here, below);

@@ -57,8 +57,14 @@ public:
     bool active() const { return active_; }
     // Rows [row_begin, row_end) of `colour` (clamped to the frame), on the calling thread.
     void run(std::vector<glm::vec4>& colour, int row_begin, int row_end) const;
+    // The same on a frame already encoded as 8-bit RGBA (4 bytes a pixel, visibility's size):
+    // an inked pixel's colour bytes become 0 (what black encodes to), its alpha byte stays.
+    void run(uint8_t* rgba8, int row_begin, int row_end) const;
 
 private:
+    template <class Ink>
+    void run_rows(const Ink& ink, int row_begin, int row_end) const;
+
     const VisibilityBuffer& visibility_;
     double near_, far_;
     std::span<const uint32_t> triangle_material_;
