@@ -35,6 +35,10 @@ std::string lower_extension(const std::filesystem::path& path) {
 
 }  // namespace
 
+std::string exr_compression(const std::filesystem::path& path, const FileSettings& settings) {
+    return lower_extension(path) == ".exr" ? exr_compression_name(settings.exr) : "";
+}
+
 std::vector<uint8_t> encode_srgb8(const Frame& frame) {
     std::vector<uint8_t> out(frame.pixels.size() * 4);
     encode_srgb8(frame.pixels.data(), frame.pixels.size(), out.data());
@@ -107,7 +111,7 @@ void write_encoded(const std::filesystem::path& path, const OwnedImage& image, c
         write_file_atomically(path, std::as_bytes(file));
         return;
     }
-    io::write_image(path, image.view());
+    io::write_image(path, image.view(), exr_compression(path, settings));
 }
 
 void write_frame(const std::filesystem::path& path, const Frame& frame, const FileSettings& settings) {

@@ -12,6 +12,7 @@
 
 #include <cstdint>
 #include <filesystem>
+#include <string>
 #include <vector>
 
 #include "raster/core/error.h"
@@ -42,6 +43,10 @@ Error non_finite_frame_error(const std::filesystem::path& path, size_t pixels);
 // FrameWriter::spare_bytes(): one of the frame's size is written over without being cleared
 // or faulted in again). Throws tessera::Error, naming the file, for a NaN or infinite value.
 OwnedImage encode_frame(const std::filesystem::path& path, const Frame& frame, std::vector<uint8_t> storage = {});
+
+// The compression method OpenImageIO is asked for when writing `path` (image_io.h): the
+// settings' EXR compression for .exr, the format's default ("") otherwise.
+std::string exr_compression(const std::filesystem::path& path, const FileSettings& settings);
 
 // Writes an image encode_frame made for `path`: PNG through png_encoder.h, other formats
 // through OpenImageIO (io/image_io.h); atomically either way. Throws tessera::Error naming

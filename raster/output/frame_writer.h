@@ -13,6 +13,7 @@
 #include <vector>
 
 #include "raster/io/image_io.h"
+#include "raster/output/exr_compression.h"
 #include "raster/output/png_encoder.h"
 
 namespace tessera::output {
@@ -20,6 +21,7 @@ namespace tessera::output {
 // How the files are compressed (frame_encoding.h's write_encoded).
 struct FileSettings {
     PngSettings png;
+    ExrCompression exr = ExrCompression::zip;
 };
 
 // Pixels the writer owns while the renderer moves on to the next frame.
