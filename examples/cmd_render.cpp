@@ -2,7 +2,8 @@
 //   tessera render --scene NAME|FILE.json [--size WxH] [--frames A:B] [--fps F]
 //                  [--out out/NAME_####.png|.exr|.tif] [--threads N]
 //                  [--renderer raster|raytrace] [--shadows none|map|rays] [--samples 1|4|8|16]
-//                  [--png fast|small] [--resume] [--shard I/N] [--stats] [--trace FILE.json]
+//                  [--png fast|small] [--exr zip|piz|dwaa|none] [--resume] [--shard I/N] [--stats]
+//                  [--trace FILE.json]
 //                  [--quiet]
 // Frames are encoded and written on a background thread (FrameWriter) while the next one
 // renders, each atomically (temp name + rename), so an interrupted run leaves only complete
@@ -67,7 +68,7 @@ constexpr int kMaxSide = 65536;
 
 struct Options {
     std::string scene = "snakes";
-    std::string size, frames, renderer = "raster", shadows, shard = "0/1", png = "fast";
+    std::string size, frames, renderer = "raster", shadows, shard = "0/1", png = "fast", exr = "zip";
     std::optional<std::string> out, trace, fps;  // given (perhaps empty) or not
     int threads = 0;
     int samples = 0;  // 0: the scene's
@@ -347,7 +348,7 @@ FrameLoop::FrameLoop(const Options& o, const LoadedScene& scene, const RenderPla
           return built;
       }()),
       frame_renderer_(scene_, plan.width, plan.height, plan.renderer, plan.shadows, plan.samples),
-      writer_(2, output::FileSettings{output::parse_png_compression(o.png)}),
+      writer_(2, output::FileSettings{output::parse_png_compression(o.png), output::parse_exr_compression(o.exr)}),
       farm_(o.farm, o.resume, scene_, scene.spec.textures, scene.name, plan.pattern.fixed_directory()),
       banded_(render::needs_bands(plan.width, plan.height)),
       layout_(render::band_layout(plan.width, plan.height)),
@@ -404,7 +405,9 @@ FrameLoop::Outcome FrameLoop::render_in_bands(int f, const fs::path& path, rende
     std::optional<output::FrameStream> file;
     const auto encode = [&](const Frame& band) { return output::encode_frame(path, band); };
     const auto write = [&](int b, output::OwnedImage band) {
-        if (!file) file.emplace(path, plan_.width, plan_.height);
+        if (!file)
+            file.emplace(path, plan_.width, plan_.height,
+                         output::FileSettings{output::parse_png_compression(o_.png), output::parse_exr_compression(o_.exr)});
         file->write(layout_.rows(b).first, std::move(band));
         if (b + 1 == layout_.bands()) file->commit();
     };
@@ -431,10 +434,21 @@ FrameLoop::Outcome FrameLoop::render_in_memory(int f, const fs::path& path, rend
     Frame& frame = frame_;
     std::string failure = std::move(tile_failure_);
     tile_failure_.clear();
+    // 8-bit files of whole frames (not gathered from ranks as floats): encoded tile by tile
+    // by the renderer, into a buffer the writer has finished with.
+    const bool direct_8bit =
+        output::frame_pixel_type(path) == io::PixelType::u8 && plan_.mode != DistributeMode::tiles;
+    std::vector<uint8_t> bytes;
+    size_t non_finite = 0;
     try {
         farm_.simulate(f);
         TraceScope t("frame", "frame", f);
-        frame_renderer_.render(float(f) / plan_.fps, frame, &st);
+        if (direct_8bit) {
+            bytes = writer_.spare_bytes();
+            non_finite = frame_renderer_.render_srgb8(float(f) / plan_.fps, bytes, &st);
+        } else {
+            frame_renderer_.render(float(f) / plan_.fps, frame, &st);
+        }
     } catch (const std::exception& e) {
         if (dist_.ranks() == 1) throw;
         if (failure.empty()) failure = e.what();
@@ -448,7 +462,12 @@ FrameLoop::Outcome FrameLoop::render_in_memory(int f, const fs::path& path, rend
         return Outcome::stop;
     }
     try {
-        writer_.submit(path, output::encode_frame(path, frame));
+        if (direct_8bit) {
+            if (non_finite > 0) throw output::non_finite_frame_error(path, non_finite);
+            writer_.submit(path, output::OwnedImage{plan_.width, plan_.height, 4, io::PixelType::u8, std::move(bytes)});
+        } else {
+            writer_.submit(path, output::encode_frame(path, frame, writer_.spare_bytes()));
+        }
         submitted_.emplace_back(path, f);
     } catch (const Error& e) {
         if (dist_.ranks() == 1) throw;
@@ -577,6 +596,11 @@ TESSERA_COMMAND(20, [](CLI::App& root) -> Run {
                     "PNG compression: fast (Paeth filter, zlib run-length; for animation work) or small "
                     "(adaptive filters, zlib level 9; slower, smaller files)")
         ->check(CLI::IsMember({"fast", "small"}))
+        ->capture_default_str();
+    cmd->add_option("--exr", o->exr,
+                    "EXR compression: zip (lossless), piz (lossless, smaller on textured frames, slower), dwaa "
+                    "(lossy colour, smallest) or none")
+        ->check(CLI::IsMember({"zip", "piz", "dwaa", "none"}))
         ->capture_default_str();
     cmd->add_flag("--resume", o->resume, "Skip frames whose files are already complete");
     cmd->add_option("--shard", o->shard, "Render shard I of N (every N-th frame from the I-th, 0-based)")

@@ -184,8 +184,9 @@ void ReactionDiffusion::step(int steps) {
 
     // One step straight from the global grids to the global grids.
     auto single_pass = [&] {
-        // About 64k cells per task: well above oneTBB's 100k-cycle guidance at ~2 cycles a cell.
-        const int grain = std::max(1, 65536 / w);
+        // About 16k cells per task: above oneTBB's 100k-cycle guidance at ~2 cycles a cell, and
+        // a cached grid still splits across threads.
+        const int grain = std::max(1, 16384 / w);
         tbb::parallel_for(tbb::blocked_range<int>(0, h, grain), [&](const tbb::blocked_range<int>& rows) {
             const FlushDenormals flush;
             for (int y = rows.begin(); y < rows.end(); ++y) {
@@ -288,8 +289,12 @@ void ReactionDiffusion::step(int steps) {
         });
     };
 
+    // A grid whose four arrays (A and B, this step and the next) fit one core's L2 (256^2) is
+    // not held to the memory roofline: temporal blocking would only add its halo and copies
+    // (about 1.3-1.8x the CPU of single steps at 256^2, bench_procedural BM_RdStep).
+    const bool in_cache = size_t(w) * size_t(h) <= size_t(1) << 16;
     while (steps > 0) {
-        const int k = std::min(steps, kFusedSteps);
+        const int k = in_cache ? 1 : std::min(steps, kFusedSteps);
         if (k == 1)
             single_pass();
         else

@@ -4,6 +4,8 @@
 #include <gtest/gtest.h>
 #include <tbb/global_control.h>
 
+#include <bit>
+#include <cstring>
 #include <limits>
 #include <vector>
 
@@ -200,6 +202,61 @@ TEST(ShadowMap, SimdLookupEqualsScalarReference) {
             EXPECT_EQ(differ, 0u) << "pcf " << pcf << ", resolution " << resolution;
             EXPECT_GT(lit, points.size() / 4) << "pcf " << pcf << ", resolution " << resolution;
             EXPECT_LT(lit, points.size() - points.size() / 10) << "some points must be dark";
+        }
+    }
+}
+
+// The surface points gathered in lanes are the reference's, bit for bit, and their facing bits
+// are faces_light's: on a sphere-grid frame, in tiles cut at odd places (blocks cut by the
+// tile's edge), with lights above, beside and below the scene; and the batched pixel rays
+// equal ray() one by one.
+TEST(SurfacePoints, LanesEqualTheReferenceAndFacingBitsTheTest) {
+    const workloads::SphereGridScene grid = workloads::make_sphere_grid(20000);
+    const glm::mat4 vp = grid.camera.view_projection();
+    pipeline::Rasterizer rasterizer;
+    VisibilityBuffer vis;
+    const int w = 203, h = 117;
+    rasterizer.render(grid.mesh, vp, pipeline::Viewport(w, h), pipeline::RasterOptions{}, vis);
+    const PixelRays rays(vp, w, h);
+    const glm::vec3 lights[] = {grid.light, {-40.0f, 3.0f, 10.0f}, {5.0f, -30.0f, 0.0f}};
+    size_t points_seen = 0;
+    for (const TileRect rect : {TileRect{0, 0, w, h}, TileRect{3, 5, 70, 66}, TileRect{150, 100, 203, 117}}) {
+        Tile tile;
+        tile.rect = rect;
+        tile.triangle = vis.triangle.data() + size_t(rect.y0) * size_t(w) + size_t(rect.x0);
+        tile.stride = size_t(w);
+        SurfacePoints lanes, reference;
+        gather_surface_points(tile, size_t(w), grid.mesh, rays, lanes, lights);
+        gather_surface_points_reference(tile, size_t(w), grid.mesh, rays, reference);
+        ASSERT_EQ(lanes.pixel, reference.pixel);
+        ASSERT_EQ(lanes.size(), reference.size());
+        ASSERT_EQ(lanes.facing.size(), reference.size());
+        for (size_t i = 0; i < lanes.size(); ++i) {
+            ASSERT_EQ(0, std::memcmp(&lanes.position[i], &reference.position[i], sizeof(glm::vec3))) << i;
+            ASSERT_EQ(0, std::memcmp(&lanes.normal[i], &reference.normal[i], sizeof(glm::vec3))) << i;
+            uint8_t facing = 0;
+            for (size_t l = 0; l < 3; ++l)
+                facing |= uint8_t(faces_light(reference.position[i], reference.normal[i], lights[l]) << l);
+            ASSERT_EQ(lanes.facing[i], facing) << i;
+        }
+        points_seen += lanes.size();
+    }
+    EXPECT_GT(points_seen, 10000u);
+    // PixelRays::rays against ray(), including centres off the pixel grid.
+    std::vector<float> x, y;
+    for (int i = 0; i < 1000; ++i) {
+        x.push_back(float(i % w) + 0.5f + 0.37f * float(i % 3));
+        y.push_back(float(i % h) + 0.5f - 0.21f * float(i % 5));
+    }
+    std::vector<float> o[3], d[3];
+    for (int c = 0; c < 3; ++c) o[c].resize(x.size()), d[c].resize(x.size());
+    rays.rays(x.size(), x.data(), y.data(), {o[0].data(), o[1].data(), o[2].data(), d[0].data(), d[1].data(), d[2].data()});
+    for (size_t i = 0; i < x.size(); ++i) {
+        glm::vec3 origin, direction;
+        rays.ray(x[i], y[i], origin, direction);
+        for (int c = 0; c < 3; ++c) {
+            ASSERT_EQ(std::bit_cast<uint32_t>(o[c][i]), std::bit_cast<uint32_t>(origin[c])) << i;
+            ASSERT_EQ(std::bit_cast<uint32_t>(d[c][i]), std::bit_cast<uint32_t>(direction[c])) << i;
         }
     }
 }

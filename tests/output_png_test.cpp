@@ -4,6 +4,7 @@
 #include <OpenImageIO/imageio.h>
 #include <gtest/gtest.h>
 #include <tbb/global_control.h>
+#include <zlib.h>
 
 #include <bit>
 #include <cmath>
@@ -16,8 +17,12 @@
 #include "raster/core/color_space.h"
 #include "raster/core/error.h"
 #include "raster/io/image_io.h"
+#include "raster/output/adler32.h"
+#include "raster/output/exr_compression.h"
+#include "raster/output/frame_stream.h"
 #include "raster/output/frame_encoding.h"
 #include "raster/output/png_encoder.h"
+#include "raster/output/rle_deflate.h"
 #include "raster/output/srgb8.h"
 
 namespace fs = std::filesystem;
@@ -58,7 +63,114 @@ void expect_decodes_to(const std::vector<uint8_t>& file, const std::vector<uint8
     EXPECT_TRUE(decoded == pixels) << what;
 }
 
+// The reference RleDeflate is held to: zlib itself, one deflate() call over all of `data`.
+std::vector<uint8_t> zlib_run_length(std::span<const uint8_t> data, bool last, int level = 1) {
+    z_stream z{};
+    EXPECT_EQ(deflateInit2(&z, level, Z_DEFLATED, -15, 9, Z_RLE), Z_OK);
+    std::vector<uint8_t> out(deflateBound(&z, uLong(data.size())) + 64);
+    z.next_in = const_cast<uint8_t*>(data.data());
+    z.avail_in = uInt(data.size());
+    z.next_out = out.data();
+    z.avail_out = uInt(out.size());
+    const int status = deflate(&z, last ? Z_FINISH : Z_SYNC_FLUSH);
+    EXPECT_EQ(status, last ? Z_STREAM_END : Z_OK);
+    out.resize(out.size() - z.avail_out);
+    deflateEnd(&z);
+    return out;
+}
+
+// Byte strings of every kind RleDeflate must code as zlib does: runs of every length around
+// the 3..258 limits, literals, incompressible stretches (stored blocks), and frequencies that
+// overflow 15-bit codes.
+std::vector<std::pair<std::string, std::vector<uint8_t>>> deflate_inputs() {
+    std::vector<std::pair<std::string, std::vector<uint8_t>>> inputs;
+    std::mt19937 rng(11);
+    const auto random_bytes = [&](size_t n) {
+        std::vector<uint8_t> v(n);
+        for (uint8_t& b : v) b = uint8_t(rng());
+        return v;
+    };
+    for (size_t n : {size_t(0), size_t(1), size_t(2), size_t(3), size_t(4), size_t(65), size_t(66), size_t(67),
+                     size_t(259), size_t(300)}) {
+        inputs.emplace_back("random " + std::to_string(n), random_bytes(n));
+        inputs.emplace_back("zeros " + std::to_string(n), std::vector<uint8_t>(n, 0));
+    }
+    // Around the block size (32767 symbols) and the window's slide (64 KiB - 262), and more
+    // than the window: random bytes are all literals, so blocks end exactly there.
+    for (size_t n : {size_t(32766), size_t(32767), size_t(32768), size_t(65273), size_t(65274), size_t(65280),
+                     size_t(70000), size_t(200000)})
+        inputs.emplace_back("random " + std::to_string(n), random_bytes(n));
+    inputs.emplace_back("zeros 1M", std::vector<uint8_t>(size_t(1) << 20, 7));
+    // Runs of random lengths (1 .. 600) of random bytes from a small alphabet.
+    for (int alphabet : {2, 5, 256}) {
+        std::vector<uint8_t> v;
+        while (v.size() < 300000) v.insert(v.end(), size_t(1 + rng() % 600), uint8_t(rng() % unsigned(alphabet)));
+        inputs.emplace_back("runs over " + std::to_string(alphabet), v);
+    }
+    // Short runs only (1 .. 4), where literals and matches alternate.
+    {
+        std::vector<uint8_t> v;
+        while (v.size() < 150000) v.insert(v.end(), size_t(1 + rng() % 4), uint8_t(rng() % 16));
+        inputs.emplace_back("short runs", v);
+    }
+    // Fibonacci frequencies: the Huffman depths exceed 15 and must be limited.
+    {
+        std::vector<uint8_t> v;
+        uint32_t a = 1, b = 1;
+        for (int sym = 0; sym < 22; ++sym) {
+            v.insert(v.end(), a, uint8_t(sym * 11));
+            const uint32_t c = a + b;
+            a = b;
+            b = c;
+        }
+        std::shuffle(v.begin(), v.end(), rng);
+        inputs.emplace_back("fibonacci", v);
+    }
+    // Filtered image rows, as the PNG encoder hands them over.
+    {
+        const int w = 640;
+        const std::vector<uint8_t> p = test_pixels(w, 64, 4, 5);
+        std::vector<uint8_t> v;
+        for (int y = 0; y < 64; ++y) {
+            v.push_back(4);
+            for (int x = 0; x < 4 * w; ++x) v.push_back(uint8_t(p[size_t(y * 4 * w + x)] - (x >= 4 ? p[size_t(y * 4 * w + x - 4)] : 0)));
+        }
+        inputs.emplace_back("image rows", v);
+    }
+    return inputs;
+}
+
 }  // namespace
+
+TEST(RleDeflate, SameBytesAsZlibRunLength) {
+    output::RleDeflate deflate;
+    for (const auto& [what, data] : deflate_inputs())
+        for (bool last : {false, true}) {
+            const std::span<const uint8_t> ours = deflate.compress(data, last);
+            const std::vector<uint8_t> zlib = zlib_run_length(data, last);
+            ASSERT_EQ(std::vector<uint8_t>(ours.begin(), ours.end()), zlib) << what << (last ? ", last" : "");
+        }
+    // zlib's level does not change run-length matching.
+    const std::vector<uint8_t> data = deflate_inputs().back().second;
+    const std::span<const uint8_t> ours = deflate.compress(data, true);
+    EXPECT_EQ(std::vector<uint8_t>(ours.begin(), ours.end()), zlib_run_length(data, true, 9));
+}
+
+TEST(Adler32, EqualsZlibsForEveryLengthAndStart) {
+    std::mt19937 rng(5);
+    std::vector<uint8_t> data(20000);
+    for (uint8_t& b : data) b = uint8_t(rng());
+    std::vector<uint8_t> ones(20000, 0xFF);  // the largest sums
+    for (const std::vector<uint8_t>* d : {&data, &ones})
+        for (size_t n : {size_t(0), size_t(1), size_t(31), size_t(32), size_t(33), size_t(5551), size_t(5552),
+                         size_t(5553), size_t(11104), size_t(20000)}) {
+            EXPECT_EQ(output::adler32_update(1, d->data(), n), uint32_t(adler32(1, d->data(), uInt(n)))) << n;
+            // Continued from a checksum part way.
+            const uint32_t start = uint32_t(adler32(1, d->data(), 1000));
+            EXPECT_EQ(output::adler32_update(start, d->data() + 1000, n / 2),
+                      uint32_t(adler32(start, d->data() + 1000, uInt(n / 2)))) << n;
+        }
+}
 
 TEST(PngEncoder, DecodesToTheSamplesForEveryFilterLevelAndChannelCount) {
     // 150 rows: two full bands of kPngBandRows and a partial one.
@@ -153,6 +265,35 @@ TEST(Srgb8, FrameEncodingEqualsTheDefinitionPerChannel) {
     }
 }
 
+TEST(Srgb8, LaneEncodingEqualsTheTableForEveryChannelAcrossTheRange) {
+    // Every 4099th float of [0, 2] and the special values, each in every channel position
+    // (the lanes' alpha selection), through the lane loop and its scalar tail (odd pixel count).
+    std::vector<float> values;
+    for (uint32_t b = 0; b <= std::bit_cast<uint32_t>(2.0f); b += 4099) values.push_back(std::bit_cast<float>(b));
+    for (float c : {-0.0f, -1.0f, 1.0f, 7.0f, std::numeric_limits<float>::infinity(),
+                    -std::numeric_limits<float>::infinity(), std::numeric_limits<float>::denorm_min(),
+                    std::numeric_limits<float>::quiet_NaN(), -std::numeric_limits<float>::quiet_NaN()})
+        values.push_back(c);
+    for (int shift = 0; shift < 4; ++shift) {
+        std::vector<glm::vec4> pixels((values.size() + size_t(shift)) / 4 | 1, glm::vec4(0.5f));
+        float* flat = &pixels[0].x;
+        for (size_t i = 0; i < values.size() && i + size_t(shift) < 4 * pixels.size(); ++i)
+            flat[i + size_t(shift)] = values[i];
+        std::vector<uint8_t> bytes(4 * pixels.size());
+        const bool finite = output::encode_srgb8(pixels.data(), pixels.size(), bytes.data());
+        bool all_finite = true;
+        for (size_t i = 0; i < bytes.size(); ++i) {
+            all_finite &= std::isfinite(flat[i]);
+            ASSERT_EQ(bytes[i], i % 4 == 3 ? output::alpha8(flat[i]) : output::srgb8_reference(flat[i]))
+                << flat[i] << " at " << i;
+        }
+        EXPECT_EQ(finite, all_finite);
+    }
+    std::vector<glm::vec4> ordinary(33, glm::vec4(0.25f, 0.5f, 1.5f, -1.0f));
+    std::vector<uint8_t> bytes(4 * ordinary.size());
+    EXPECT_TRUE(output::encode_srgb8(ordinary.data(), ordinary.size(), bytes.data()));
+}
+
 TEST(PngEncoder, WriteFrameGoesThroughItAndFailsWithoutAHalfFile) {
     Frame frame(70, 66, glm::vec4(0.25f, 0.5f, 1.0f, 1.0f));
     const fs::path dir = fs::temp_directory_path() / "tessera_output_png_frames";
@@ -163,3 +304,55 @@ TEST(PngEncoder, WriteFrameGoesThroughItAndFailsWithoutAHalfFile) {
     EXPECT_THROW(output::write_frame(dir / "missing" / "f.png", frame), Error);
     EXPECT_FALSE(fs::exists(dir / "missing"));
 }
+
+// EXR frames in each compression (--exr): the lossless ones read back as written, float for
+// float; dwaa (lossy colour) within a few percent, alpha exact; the file says which method
+// it holds; the streamed (banded) writer takes the setting too.
+TEST(ExrCompression, EveryChoiceReadsBackAndIsRecordedInTheFile) {
+    Frame frame(67, 41);
+    std::mt19937 rng(4);
+    std::uniform_real_distribution<float> unit(0.0f, 1.0f);
+    for (int y = 0; y < frame.height; ++y)
+        for (int x = 0; x < frame.width; ++x)  // a smooth ramp with noise: something to compress
+            frame.at(x, y) = glm::vec4(float(x) / 67.0f, float(y) / 41.0f, 0.5f + 0.1f * unit(rng), y < 20 ? 1.0f : 0.5f);
+    const fs::path dir = fs::temp_directory_path() / "tessera_exr_compression";
+    fs::create_directories(dir);
+    for (const output::ExrCompression c : {output::ExrCompression::zip, output::ExrCompression::piz,
+                                           output::ExrCompression::dwaa, output::ExrCompression::none}) {
+        const std::string name = output::exr_compression_name(c);
+        SCOPED_TRACE(name);
+        const fs::path path = dir / ("f_" + name + ".exr");
+        output::FileSettings settings;
+        settings.exr = c;
+        output::write_frame(path, frame, settings);
+        const io::FloatImage image = io::read_image(path);
+        ASSERT_EQ(image.width, frame.width);
+        ASSERT_EQ(image.channels, 4);
+        float worst = 0.0f;
+        for (int y = 0; y < frame.height; ++y)
+            for (int x = 0; x < frame.width; ++x)
+                for (int ch = 0; ch < 4; ++ch) {
+                    const float d = std::fabs(image.at(x, y, ch) - frame.at(x, y)[ch]);
+                    if (ch == 3 || c != output::ExrCompression::dwaa) ASSERT_EQ(d, 0.0f) << x << "," << y << " " << ch;
+                    worst = std::max(worst, d);
+                }
+        EXPECT_LT(worst, 0.03f);
+        auto in = OIIO::ImageInput::open(path.string());
+        ASSERT_TRUE(in);
+        EXPECT_EQ(in->spec().get_string_attribute("compression"), name);
+    }
+    EXPECT_EQ(output::parse_exr_compression("piz"), output::ExrCompression::piz);
+    EXPECT_THROW(output::parse_exr_compression("zstd"), std::invalid_argument);
+    // Streamed band by band.
+    output::FileSettings piz;
+    piz.exr = output::ExrCompression::piz;
+    {
+        output::FrameStream stream(dir / "streamed.exr", frame.width, frame.height, piz);
+        stream.write(0, frame);
+        stream.commit();
+    }
+    auto in = OIIO::ImageInput::open((dir / "streamed.exr").string());
+    ASSERT_TRUE(in);
+    EXPECT_EQ(in->spec().get_string_attribute("compression"), "piz");
+}
+

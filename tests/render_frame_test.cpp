@@ -7,10 +7,12 @@
 
 #include <filesystem>
 #include <fstream>
+#include <cstring>
 #include <limits>
 #include <set>
 #include <string>
 
+#include "raster/output/srgb8.h"
 #include "raster/render/frame_renderer.h"
 #include "raster/scene_file/scene_build.h"
 #include "raster/scene_file/scene_parse.h"
@@ -167,6 +169,38 @@ TEST(RenderFrame, AReusedFrameBufferGivesTheSameBytesAsAFreshOne) {
                     << int(r) << " rows " << rows;
             }
         }
+}
+
+// The 8-bit frame encoded tile by tile (render_srgb8) is encode_srgb8 of the float frame, byte
+// for byte: both renderers, one and four samples, restricted rows, shadows, toon outlines
+// (inked after encoding), a buffer reused at another size; NaN pixels are counted.
+TEST(RenderFrame, EightBitFramesAreTheEncodedFloatFrames) {
+    const std::string toon = R"({
+  "camera": {"eye": [0, 3, 4], "lookat": [0, 0, 0], "fov": 50},
+  "background": {"type": "sky"},
+  "lights": [{"direction": [0.3, 1, 0.2], "La": [0.2, 0.2, 0.2], "Le": [1, 1, 1]}],
+  "materials": {"grey": {"model": "phong", "kd": [0.6, 0.6, 0.6]}, "ink": {"model": "toon", "kd": [0.9, 0.4, 0.1]}},
+  "objects": [
+    {"type": "box", "material": "grey", "size": [6, 0.2, 6], "transform": {"translate": [0, -1.1, 0]}},
+    {"type": "sphere", "material": "ink", "radius": 0.5, "tessellation": [32, 16], "centre": [0, 0, 0]}
+  ]
+})";
+    for (const std::string& json : {std::string(kBallOverFloor), toon})
+        for (render::RendererKind r : {render::RendererKind::raster, render::RendererKind::raytrace})
+            for (const int samples : {1, 4})
+                for (const bool rows : {false, true}) {
+                    SCOPED_TRACE("renderer " + std::to_string(int(r)) + ", samples " + std::to_string(samples) +
+                                 ", rows " + std::to_string(rows));
+                    render::AnimatedScene scene = scene_from(json);
+                    render::FrameRenderer renderer(scene, 99, 70, r, render::ShadowMode::rays, samples);
+                    if (rows) renderer.set_rows(10, 40);
+                    const Frame frame = renderer.render(0.5f);
+                    std::vector<uint8_t> expected(frame.pixels.size() * 4);
+                    ASSERT_TRUE(output::encode_srgb8(frame.pixels.data(), frame.pixels.size(), expected.data()));
+                    std::vector<uint8_t> bytes(5, 7);
+                    EXPECT_EQ(renderer.render_srgb8(0.5f, bytes), 0u);
+                    EXPECT_EQ(bytes, expected);
+                }
 }
 
 TEST(RenderFrame, RejectsWhatItCannotDo) {

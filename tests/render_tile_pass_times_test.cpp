@@ -16,18 +16,20 @@ using namespace tessera;
 
 namespace {
 
-// Opaque and glass objects over a floor, a sky, fog, one shadow-casting light: every pass but
-// the ray-marched surfaces runs.
+// Opaque, glass and toon objects over a floor, a sky, fog, one shadow-casting light: every pass
+// but the ray-marched surfaces runs.
 const char* kPasses = R"({
   "camera": {"eye": [0, 2.5, 4.5], "lookat": [0, 0, 0], "fov": 50},
   "background": {"type": "sky"},
   "lights": [{"direction": [0.3, 1, 0.4], "La": [0.2, 0.2, 0.2], "Le": [1, 1, 1]}],
   "materials": {"floor": {"model": "phong", "kd": [0.7, 0.7, 0.6]},
                 "red": {"model": "phong", "kd": [0.8, 0.1, 0.1]},
-                "glass": {"model": "phong", "kd": [0.1, 0.2, 0.9], "opacity": 0.4}},
+                "glass": {"model": "phong", "kd": [0.1, 0.2, 0.9], "opacity": 0.4},
+                "ink": {"model": "toon", "kd": [0.9, 0.8, 0.1]}},
   "objects": [
     {"type": "box", "material": "floor", "size": [4, 0.2, 4], "transform": {"translate": [0, -1.0, 0]}},
     {"type": "sphere", "material": "red", "radius": 0.5, "tessellation": [24, 12], "centre": [0.6, -0.4, 0]},
+    {"type": "sphere", "material": "ink", "radius": 0.3, "tessellation": [16, 8], "centre": [-0.9, -0.6, -0.5]},
     {"type": "box", "material": "glass", "size": [1.2, 1.2, 0.05], "transform": {"translate": [-0.3, 0.1, 1.0]}}
   ],
   "passes": [{"type": "fog", "density": [0.05, 0.05, 0.05]}]
@@ -54,7 +56,8 @@ TEST(TilePassTimes, EveryPassThatRunsIsTimedAndTheyAddUpToAtMostTheTiles) {
             for (size_t p = 0; p < render::kTilePasses; ++p) EXPECT_GE(t.ms[p], 0.0) << render::tile_pass_name(render::TilePass(p));
             for (const render::TilePass ran : {render::TilePass::shade, render::TilePass::background,
                                                render::TilePass::transparent, render::TilePass::shadows,
-                                               render::TilePass::blend, render::TilePass::fog})
+                                               render::TilePass::blend, render::TilePass::fog,
+                                               render::TilePass::outline})
                 EXPECT_GT(t[ran], 0.0) << render::tile_pass_name(ran);
             EXPECT_EQ(t[render::TilePass::terrain], 0.0);
             EXPECT_EQ(t[render::TilePass::metaballs], 0.0);

@@ -3,6 +3,8 @@
 // materials, and the same whichever way the rows are split.
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <random>
 #include <string>
 #include <vector>
 
@@ -148,5 +150,39 @@ TEST(ShadingOutline, AThinToonRodHasAnUnbrokenOutlineInBothRenderers) {
         EXPECT_GT(edge, 150);
         EXPECT_EQ(inked, edge) << "rod pixels beside something farther left without ink";
         EXPECT_GT(inside - inside_inked, inside / 3) << "the rod's inside keeps its colour";
+    }
+}
+
+// OutlinePass (rows prepared once) against the pixel-by-pixel definition, on buffers with
+// every kind of neighbour: planes at random slopes and depths, background, pixels without a
+// triangle's material, toon and Phong materials, split into uneven row blocks.
+TEST(ShadingOutline, TheRowPassEqualsTheReferenceOnRandomBuffers) {
+    std::mt19937 rng(17);
+    std::uniform_real_distribution<float> unit(0.0f, 1.0f);
+    const std::vector<scene::Material> materials = toon_and_phong();
+    const std::vector<uint32_t> triangle_material{0, 1, 0, 0, 1};  // ids 5+ have no material
+    for (int trial = 0; trial < 20; ++trial) {
+        VisibilityBuffer v = grazing_floor();
+        // Rectangles of planes (1/d affine in x and y), some background, some unknown ids.
+        for (int r = 0; r < 12; ++r) {
+            const int x0 = int(rng() % W), y0 = int(rng() % H);
+            const int x1 = std::min(W, x0 + 1 + int(rng() % 20)), y1 = std::min(H, y0 + 1 + int(rng() % 12));
+            const uint32_t id = uint32_t(rng() % 7);
+            const float base = 0.02f + 0.5f * unit(rng), dx = 0.01f * (unit(rng) - 0.5f), dy = 0.01f * (unit(rng) - 0.5f);
+            const bool background = rng() % 6 == 0;
+            for (int y = y0; y < y1; ++y)
+                for (int x = x0; x < x1; ++x) {
+                    const size_t i = size_t(y) * W + size_t(x);
+                    v.triangle[i] = background ? kNoTriangle : id;
+                    v.depth[i] = background ? 1.0f : window_depth(1.0f / std::max(0.021f, base + dx * float(x) + dy * float(y)));
+                }
+        }
+        std::vector<glm::vec4> expected = white(), whole = white(), banded = white();
+        shade::draw_outlines_reference(v, test_camera(), triangle_material, materials, expected, 0, H);
+        shade::draw_outlines(v, test_camera(), triangle_material, materials, whole, 0, H);
+        const shade::OutlinePass pass(v, test_camera(), triangle_material, materials);
+        for (int y0 = 0; y0 < H; y0 += 1 + trial % 7) pass.run(banded, y0, y0 + 1 + trial % 7);
+        ASSERT_EQ(whole, expected) << "trial " << trial;
+        ASSERT_EQ(banded, expected) << "trial " << trial;
     }
 }

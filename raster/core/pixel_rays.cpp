@@ -30,6 +30,38 @@ void PixelRays::ray(float x_centre, float y_centre, glm::vec3& origin,
     direction = glm::vec3(glm::dvec3(on_far) / on_far.w - near_point);
 }
 
+namespace {
+
+// PixelRays::rays' loop, with __restrict parameters (GCC honours restrict on parameters, not
+// on locals) so that it vectorises: Affine::at (origin + x * per_x + y * per_y) and the
+// divisions by w, per component.
+void rays_of(size_t n, const float* __restrict x_centre, const float* __restrict y_centre, const glm::dvec4 no,
+             const glm::dvec4 fo, const glm::dvec4 px, const glm::dvec4 py, float* __restrict ox,
+             float* __restrict oy, float* __restrict oz, float* __restrict dx, float* __restrict dy,
+             float* __restrict dz) {
+    for (size_t i = 0; i < n; ++i) {
+        const double x = x_centre[i], y = y_centre[i];
+        const double nw = (no.w + x * px.w) + y * py.w, fw = (fo.w + x * px.w) + y * py.w;
+        const double nx = ((no.x + x * px.x) + y * py.x) / nw, ny = ((no.y + x * px.y) + y * py.y) / nw,
+                     nz = ((no.z + x * px.z) + y * py.z) / nw;
+        const double fx = ((fo.x + x * px.x) + y * py.x) / fw, fy = ((fo.y + x * px.y) + y * py.y) / fw,
+                     fz = ((fo.z + x * px.z) + y * py.z) / fw;
+        ox[i] = float(nx);
+        oy[i] = float(ny);
+        oz[i] = float(nz);
+        dx[i] = float(fx - nx);
+        dy[i] = float(fy - ny);
+        dz[i] = float(fz - nz);
+    }
+}
+
+}  // namespace
+
+void PixelRays::rays(size_t n, const float* x_centre, const float* y_centre, const RayArrays& out) const {
+    rays_of(n, x_centre, y_centre, near_.origin, far_.origin, near_.per_x, near_.per_y, out.ox, out.oy, out.oz,
+            out.dx, out.dy, out.dz);
+}
+
 float PixelRays::window_depth(const glm::vec3& world) const {
     const glm::dvec4 clip = view_projection_ * glm::dvec4(glm::dvec3(world), 1.0);
     return float(clip.z / clip.w * 0.5 + 0.5);

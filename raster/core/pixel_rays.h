@@ -11,6 +11,8 @@
 #pragma once
 #include <glm/glm.hpp>
 
+#include <cstddef>
+
 namespace tessera {
 
 class PixelRays {
@@ -22,6 +24,14 @@ public:
     void pixel_ray(int x, int y, glm::vec3& origin, glm::vec3& direction) const {
         ray(float(x) + 0.5f, float(y) + 0.5f, origin, direction);
     }
+    // ray() for n window positions at once, structure of arrays: the same double arithmetic
+    // in the same order, written as one loop over independent elements so that the compiler
+    // runs it in vector lanes (the library builds with -ffp-contract=off: no fused
+    // multiply-adds, so every element equals ray()'s).
+    struct RayArrays {
+        float *ox, *oy, *oz, *dx, *dy, *dz;
+    };
+    void rays(size_t n, const float* x_centre, const float* y_centre, const RayArrays& out) const;
 
     // Window depth z_ndc * 0.5 + 0.5 of a world point, as the rasterizer stores it.
     float window_depth(const glm::vec3& world) const;

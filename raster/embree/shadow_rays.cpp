@@ -2,8 +2,10 @@
 
 #include <algorithm>
 #include <cmath>
+#include <vector>
 
 #include "raster/embree/packets.h"
+#include "raster/simd/simd.h"
 
 namespace tessera::embree {
 namespace {
@@ -41,31 +43,85 @@ void trace_single(RTCScene scene, const shadow::SurfacePoints& points, const glm
     }
 }
 
+// The points that face the light, in order: packets are filled with them only, so no lane
+// is spent on a point the light cannot reach (and consecutive points stay neighbours).
+void facing_points(const shadow::SurfacePoints& points, const glm::vec3& light, uint8_t bit,
+                   std::vector<uint32_t>& out) {
+    out.resize(points.size());
+    size_t n = 0;
+    if (points.facing.size() == points.size()) {  // gathered with the lights: branch-free
+        const uint8_t* facing = points.facing.data();
+        uint32_t* to = out.data();
+        for (size_t i = 0; i < points.size(); ++i) {
+            to[n] = uint32_t(i);
+            n += (facing[i] & bit) != 0;
+        }
+    } else {
+        for (size_t i = 0; i < points.size(); ++i)
+            if (shadow::faces_light(points.position[i], points.normal[i], light)) out[n++] = uint32_t(i);
+    }
+    out.resize(n);
+}
+
+// shadow_ray() for the lanes of a packet, kLanes at a time: the points' positions and normals
+// gathered, the same float operations (max of the magnitudes, then the offset), stored into
+// the packet's arrays.
+template <class PacketRay>
+void set_lanes(PacketRay& packet, int width, const shadow::SurfacePoints& points, const uint32_t* index, int count,
+               const glm::vec3& light) {
+    using simd::vfloat;
+    using simd::vint;
+    const float* position = &points.position[0].x;
+    const float* normal = &points.normal[0].x;
+    const vint sign_off(0x7FFFFFFF);
+    const auto magnitude = [&](vfloat v) { return simd::float_of_bits(simd::bits_of(v) & sign_off); };
+    for (int first = 0; first < width; first += simd::kLanes) {
+        alignas(64) int32_t offset[simd::kLanes];
+        for (int lane = 0; lane < simd::kLanes; ++lane) {
+            const int k = first + lane;
+            offset[lane] = int32_t(3 * index[k < count ? k : 0]);  // idle lanes repeat the first ray
+        }
+        const vint o = vint::load(offset);
+        const vfloat px = simd::gather(position, o), py = simd::gather(position + 1, o),
+                     pz = simd::gather(position + 2, o);
+        const vfloat nx = simd::gather(normal, o), ny = simd::gather(normal + 1, o), nz = simd::gather(normal + 2, o);
+        // std::max({|x|, |y|, |z|}): the largest magnitude (positions are finite).
+        const vfloat scale = vfloat(1.0f) + simd::max(simd::max(magnitude(px), magnitude(py)), magnitude(pz));
+        const vfloat step = vfloat(kShadowRayOffset) * scale;
+        const vfloat ox = px + nx * step, oy = py + ny * step, oz = pz + nz * step;
+        ox.store(packet.org_x + first);
+        oy.store(packet.org_y + first);
+        oz.store(packet.org_z + first);
+        (vfloat(light.x) - ox).store(packet.dir_x + first);
+        (vfloat(light.y) - oy).store(packet.dir_y + first);
+        (vfloat(light.z) - oz).store(packet.dir_z + first);
+    }
+    for (int lane = 0; lane < width; ++lane) {
+        packet.tnear[lane] = 0.0f;
+        packet.tfar[lane] = 1.0f;
+        packet.time[lane] = 0.0f;
+        packet.mask[lane] = 0xFFFFFFFFu;
+        packet.id[lane] = unsigned(lane);
+        packet.flags[lane] = 0;
+    }
+}
+
 template <int N>
 void trace_packets(RTCScene scene, const shadow::SurfacePoints& points, const glm::vec3& light,
                    uint8_t bit, std::span<uint8_t> visible) {
     using P = Packet<N>;
     RTCIntersectContext context = coherent_context();
-    for (size_t first = 0; first < points.size(); first += N) {
+    thread_local std::vector<uint32_t> traced;
+    facing_points(points, light, bit, traced);
+    for (size_t first = 0; first < traced.size(); first += N) {
         typename P::Ray packet;
         alignas(64) int valid[N];
-        int active = 0;
-        for (int lane = 0; lane < N; ++lane) {
-            const size_t i = first + size_t(lane);
-            valid[lane] = i < points.size() &&
-                                  shadow::faces_light(points.position[i], points.normal[i], light)
-                              ? -1
-                              : 0;
-            active += valid[lane] != 0;
-            const ShadowRay r = valid[lane]
-                                    ? shadow_ray(points.position[i], points.normal[i], light)
-                                    : ShadowRay{glm::vec3(0.0f), glm::vec3(0.0f, 0.0f, 1.0f)};
-            set_lane(packet, lane, r.origin, r.direction, 0.0f, 1.0f);
-        }
-        if (active == 0) continue;
+        const int count = int(std::min<size_t>(N, traced.size() - first));
+        for (int lane = 0; lane < N; ++lane) valid[lane] = lane < count ? -1 : 0;
+        set_lanes(packet, N, points, traced.data() + first, count, light);
         P::occluded(valid, scene, &context, &packet);
         for (int lane = 0; lane < N; ++lane)
-            if (valid[lane] && packet.tfar[lane] >= 0.0f) visible[first + size_t(lane)] |= bit;
+            if (valid[lane] && packet.tfar[lane] >= 0.0f) visible[traced[first + size_t(lane)]] |= bit;
     }
 }
 

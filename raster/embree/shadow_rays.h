@@ -5,9 +5,11 @@
 // research note 3.2 item 4) and ends exactly at the light (t in [0, 1]). Points whose surface
 // faces away from a light are not traced: the light cannot reach them.
 //
-// Rays go in coherent packets of 8 or 16 consecutive points (the tile's 4x4 pixel blocks, see
-// surface_points.h) through rtcOccluded8/16 with the COHERENT flag, or one at a time through
-// rtcOccluded1 (the reference path). Both give the same answer ray for ray.
+// Rays go in coherent packets of 8 or 16 consecutive points facing the light (the tile's 4x4
+// pixel blocks, see surface_points.h, less the points facing away, so every lane of a packet
+// is a ray; SurfacePoints::facing when the points were gathered with the lights) through
+// rtcOccluded8/16 with the COHERENT flag, or one at a time through rtcOccluded1 (the
+// reference path). Both give the same answer ray for ray.
 #pragma once
 #include <glm/glm.hpp>
 

@@ -38,7 +38,7 @@ struct CodecStream;
 struct ImageCodec {
     // Bumped whenever this struct changes, so a stale module next to a newer program is
     // refused with a message instead of called through the wrong table.
-    static constexpr int kAbi = 1;
+    static constexpr int kAbi = 2;
     int abi = kAbi;
 
     // The version of OpenImageIO the module runs on.
@@ -46,9 +46,12 @@ struct ImageCodec {
     // True when there is a writer for the extension of `path`.
     bool (*format_supported)(const std::string& path);
     // `image` encoded as `path`'s extension asks, into `encoded`. `date_time` is the files'
-    // DateTime (date_stamp.h); `srgb_to_linear` decodes 8-bit sRGB colour for linear formats.
+    // DateTime (date_stamp.h); `srgb_to_linear` decodes 8-bit sRGB colour for linear formats;
+    // `compression`: the format's compression method by OpenImageIO's name ("zip", "piz",
+    // "dwaa", ...), or empty for the format's default.
     std::string (*encode)(const std::string& path, const ImageView& image, const std::string& date_time,
-                          float (*srgb_to_linear)(float), std::vector<unsigned char>& encoded);
+                          float (*srgb_to_linear)(float), const std::string& compression,
+                          std::vector<unsigned char>& encoded);
     // A whole image file, or an encoded image in memory (`format`: the extension tried first).
     std::string (*decode_file)(const std::string& path, FloatImage& image);
     std::string (*decode_memory)(std::span<const uint8_t> bytes, const std::string& name,
@@ -57,7 +60,8 @@ struct ImageCodec {
     // bottom, close. `stream` is set by open whether or not it succeeds, and is freed by
     // stream_free whatever happened.
     std::string (*stream_open)(const std::string& path, int width, int height, int channels, PixelType type,
-                               int tile, const std::string& date_time, CodecSink sink, CodecStream** stream);
+                               int tile, const std::string& date_time, const std::string& compression,
+                               CodecSink sink, CodecStream** stream);
     bool (*stream_tiled)(const CodecStream* stream);
     std::string (*stream_write)(CodecStream* stream, int y, const ImageView& rows);
     std::string (*stream_close)(CodecStream* stream);

@@ -25,12 +25,12 @@ float decode_srgb(float encoded) { return srgb_to_linear(encoded); }
 
 bool image_format_supported(const fs::path& path) { return image_codec().format_supported(path.string()); }
 
-void write_image(const fs::path& path, const ImageView& image) {
+void write_image(const fs::path& path, const ImageView& image, const std::string& compression) {
     if (image.width <= 0 || image.height <= 0 || image.channels <= 0 || !image.pixels)
         throw Error("cannot write '" + path.string() + "': the image is empty");
     // Encoded in memory, then written atomically: a failed write never leaves a part.
     std::vector<unsigned char> encoded;
-    check(image_codec().encode(path.string(), image, image_date_time(), decode_srgb, encoded));
+    check(image_codec().encode(path.string(), image, image_date_time(), decode_srgb, compression, encoded));
     write_file_atomically(path, std::as_bytes(std::span(encoded.data(), encoded.size())));
 }
 

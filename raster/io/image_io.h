@@ -45,8 +45,9 @@ struct FloatImage {
 // Writes `image` to `path`; the file stores the pixel type given where the format supports it
 // (OpenImageIO converts otherwise, e.g. float to 16-bit for PNG), except that 8-bit sRGB
 // colour (ImageView::srgb) bound for a linear-light format is stored as linear half floats.
-// Throws tessera::Error.
-void write_image(const std::filesystem::path& path, const ImageView& image);
+// `compression`: the format's compression method by OpenImageIO's name (OpenEXR: "none",
+// "zip", "piz", "dwaa", ...), empty for the format's default. Throws tessera::Error.
+void write_image(const std::filesystem::path& path, const ImageView& image, const std::string& compression = "");
 
 // Reads any image OpenImageIO understands. Throws tessera::Error with the reason.
 FloatImage read_image(const std::filesystem::path& path);

@@ -48,7 +48,8 @@ struct ImageStream::Impl {
     }
 };
 
-ImageStream::ImageStream(const fs::path& path, int width, int height, int channels, PixelType type) {
+ImageStream::ImageStream(const fs::path& path, int width, int height, int channels, PixelType type,
+                         const std::string& compression) {
     if (width <= 0 || height <= 0 || channels <= 0)
         throw Error("cannot write '" + path.string() + "': the image is empty");
     impl_ = std::make_unique<Impl>(path, width, height, channels, type);
@@ -56,7 +57,7 @@ ImageStream::ImageStream(const fs::path& path, int width, int height, int channe
     const ImageCodec& codec = image_codec();
     // Tiled (kTileRows square) where the format has tiles: EXR, TIFF.
     im.check(codec.stream_open(path.string(), width, height, channels, type, kTileRows, image_date_time(),
-                               CodecSink{&im, &Impl::write_at}, &im.stream));
+                               compression, CodecSink{&im, &Impl::write_at}, &im.stream));
     im.tiled = codec.stream_tiled(im.stream);
 }
 

@@ -21,7 +21,9 @@ public:
 
     // Starts `path` (format from its extension). Throws tessera::Error naming the file (no
     // writer for the extension, unwritable directory).
-    ImageStream(const std::filesystem::path& path, int width, int height, int channels, PixelType type);
+    // `compression`: as write_image's (image_io.h).
+    ImageStream(const std::filesystem::path& path, int width, int height, int channels, PixelType type,
+                const std::string& compression = "");
     ~ImageStream();  // without commit(): the temporary is removed, nothing appears
     ImageStream(const ImageStream&) = delete;
     ImageStream& operator=(const ImageStream&) = delete;

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cctype>
 #include <cmath>
+#include <optional>
 #include <string>
 
 #include "raster/core/atomic_file.h"
@@ -34,10 +35,11 @@ std::string lower_extension(const std::filesystem::path& path) {
 
 }  // namespace
 
+std::string exr_compression(const std::filesystem::path& path, const FileSettings& settings) {
+    return lower_extension(path) == ".exr" ? exr_compression_name(settings.exr) : "";
+}
+
 std::vector<uint8_t> encode_srgb8(const Frame& frame) {
-    // One thread: a table lookup per value (a few ms for 1080p) is not worth a parallel loop
-    // here, and this runs on the background writers, whose synchronisation ThreadSanitizer
-    // checks (make tsan); oneTBB's uninstrumented workers would show as races there.
     std::vector<uint8_t> out(frame.pixels.size() * 4);
     encode_srgb8(frame.pixels.data(), frame.pixels.size(), out.data());
     return out;
@@ -55,41 +57,61 @@ bool frame_format_supported(const std::filesystem::path& path) {
     return lower_extension(path) == ".png" || io::image_format_supported(path);
 }
 
-OwnedImage encode_frame(const std::filesystem::path& path, const Frame& frame) {
+Error non_finite_frame_error(const std::filesystem::path& path, size_t pixels) {
+    return Error("cannot write '" + path.string() + "': " + std::to_string(pixels) +
+                 " pixel(s) came out NaN or infinite (a value of the scene overflows single precision)");
+}
+
+OwnedImage encode_frame(const std::filesystem::path& path, const Frame& frame, std::vector<uint8_t> storage) {
     // A frame holding NaN or Inf (a value of the scene that overflowed float, or a bug) is never
     // written: an EXR would carry it on into compositing, 8-bit encodings would hide it as
     // black or white. Finite values are what every renderer stage is meant to produce.
-    size_t non_finite = 0;
-    for (const glm::vec4& p : frame.pixels)
-        non_finite += !(std::isfinite(p.r) && std::isfinite(p.g) && std::isfinite(p.b) && std::isfinite(p.a));
-    if (non_finite > 0)
-        throw Error("cannot write '" + path.string() + "': " + std::to_string(non_finite) +
-                    " pixel(s) came out NaN or infinite (a value of the scene overflows single precision)");
-    OwnedImage image{frame.width, frame.height, 4, frame_pixel_type(path), {}};
+    const auto refuse_non_finite = [&] {
+        size_t non_finite = 0;
+        for (const glm::vec4& p : frame.pixels)
+            non_finite += !(std::isfinite(p.r) && std::isfinite(p.g) && std::isfinite(p.b) && std::isfinite(p.a));
+        if (non_finite > 0) throw non_finite_frame_error(path, non_finite);
+    };
+    OwnedImage image{frame.width, frame.height, 4, frame_pixel_type(path), std::move(storage)};
     const auto keep = [&image](const auto& values) {
         const auto* bytes = reinterpret_cast<const uint8_t*>(values.data());
         image.bytes.assign(bytes, bytes + values.size() * sizeof(values[0]));
     };
     switch (image.type) {
-        case io::PixelType::f32: keep(frame.pixels); break;
-        case io::PixelType::u16: keep(encode_srgb16(frame)); break;
-        case io::PixelType::u8: image.bytes = encode_srgb8(frame); break;
+        case io::PixelType::f32:
+            refuse_non_finite();
+            keep(frame.pixels);
+            break;
+        case io::PixelType::u16:
+            refuse_non_finite();
+            keep(encode_srgb16(frame));
+            break;
+        case io::PixelType::u8:
+            // One pass: the encoder reports non-finite values, which are counted only then.
+            // One thread: it runs on the background writers, whose synchronisation
+            // ThreadSanitizer checks (make tsan); oneTBB's workers would show as races there.
+            image.bytes.resize(frame.pixels.size() * 4);  // a recycled buffer keeps its pages
+            if (!encode_srgb8(frame.pixels.data(), frame.pixels.size(), image.bytes.data())) refuse_non_finite();
+            break;
     }
     return image;
 }
 
-void write_encoded(const std::filesystem::path& path, const OwnedImage& image, const FileSettings& settings) {
+void write_encoded(const std::filesystem::path& path, const OwnedImage& image, const FileSettings& settings,
+                   PngEncoder* png) {
     if (lower_extension(path) == ".png" && image.type == io::PixelType::u8 && image.width > 0 && image.height > 0) {
-        std::vector<uint8_t> file;
+        std::optional<PngEncoder> own;
+        if (!png) png = &own.emplace(settings.png);
+        std::span<const uint8_t> file;
         try {
-            file = encode_png(image.bytes.data(), image.width, image.height, image.channels, settings.png);
+            file = png->encode(image.bytes.data(), image.width, image.height, image.channels);
         } catch (const std::exception& e) {
             throw Error("cannot write '" + path.string() + "': " + e.what());
         }
-        write_file_atomically(path, std::as_bytes(std::span(file.data(), file.size())));
+        write_file_atomically(path, std::as_bytes(file));
         return;
     }
-    io::write_image(path, image.view());
+    io::write_image(path, image.view(), exr_compression(path, settings));
 }
 
 void write_frame(const std::filesystem::path& path, const Frame& frame, const FileSettings& settings) {

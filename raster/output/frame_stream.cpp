@@ -6,8 +6,8 @@
 
 namespace tessera::output {
 
-FrameStream::FrameStream(const std::filesystem::path& path, int width, int height)
-    : path_(path), file_(path, width, height, 4, frame_pixel_type(path)) {}
+FrameStream::FrameStream(const std::filesystem::path& path, int width, int height, const FileSettings& settings)
+    : path_(path), file_(path, width, height, 4, frame_pixel_type(path), exr_compression(path, settings)) {}
 
 FrameStream::~FrameStream() {
     if (in_flight_.valid()) in_flight_.wait();  // its failure, if any, dies with the file

@@ -14,8 +14,9 @@ namespace tessera::output {
 
 class FrameStream {
 public:
-    // Throws tessera::Error (as ImageStream).
-    FrameStream(const std::filesystem::path& path, int width, int height);
+    // Throws tessera::Error (as ImageStream). `settings`: the EXR compression (PNG bands are
+    // streamed as scanlines by OpenImageIO).
+    FrameStream(const std::filesystem::path& path, int width, int height, const FileSettings& settings = {});
     ~FrameStream();  // waits for the band in flight; without commit() the file never appears
     FrameStream(const FrameStream&) = delete;
     FrameStream& operator=(const FrameStream&) = delete;

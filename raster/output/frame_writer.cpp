@@ -6,7 +6,7 @@
 namespace tessera::output {
 
 FrameWriter::FrameWriter(size_t max_pending, const FileSettings& settings)
-    : max_pending_(max_pending == 0 ? 1 : max_pending), settings_(settings), worker_([this] { run(); }) {}
+    : max_pending_(max_pending == 0 ? 1 : max_pending), settings_(settings), png_(settings.png), worker_([this] { run(); }) {}
 
 FrameWriter::~FrameWriter() {
     {
@@ -50,6 +50,14 @@ void FrameWriter::record_written(std::filesystem::path path) {
     written_.push_back(std::move(path));
 }
 
+std::vector<uint8_t> FrameWriter::spare_bytes() {
+    std::lock_guard lock(mutex_);
+    if (spare_.empty()) return {};
+    std::vector<uint8_t> bytes = std::move(spare_.back());
+    spare_.pop_back();
+    return bytes;
+}
+
 void FrameWriter::run() {
     for (;;) {
         Job job;
@@ -64,7 +72,7 @@ void FrameWriter::run() {
         std::exception_ptr failure;
         try {
             TraceScope scope("write frame", "io");
-            write_encoded(job.path, job.image, settings_);
+            write_encoded(job.path, job.image, settings_, &png_);
         } catch (...) {
             failure = std::current_exception();
         }
@@ -77,6 +85,7 @@ void FrameWriter::run() {
             } else {
                 written_.push_back(job.path);
             }
+            if (spare_.size() <= max_pending_) spare_.push_back(std::move(job.image.bytes));
         }
         changed_.notify_all();
     }

@@ -13,6 +13,7 @@
 #include <vector>
 
 #include "raster/io/image_io.h"
+#include "raster/output/exr_compression.h"
 #include "raster/output/png_encoder.h"
 
 namespace tessera::output {
@@ -20,6 +21,7 @@ namespace tessera::output {
 // How the files are compressed (frame_encoding.h's write_encoded).
 struct FileSettings {
     PngSettings png;
+    ExrCompression exr = ExrCompression::zip;
 };
 
 // Pixels the writer owns while the renderer moves on to the next frame.
@@ -47,6 +49,9 @@ public:
     // Adds a frame the caller wrote itself (streamed band by band, image_stream.h), so that
     // written() stays the one list of finished frames.
     void record_written(std::filesystem::path path);
+    // The pixel buffer of a frame already written, to encode the next one into (encode_frame):
+    // its pages stay mapped from frame to frame. Empty when none is free.
+    std::vector<uint8_t> spare_bytes();
 
 private:
     struct Job {
@@ -58,6 +63,7 @@ private:
 
     const size_t max_pending_;
     const FileSettings settings_;
+    PngEncoder png_;  // the worker's, its buffers kept from frame to frame
     mutable std::mutex mutex_;
     std::condition_variable changed_;
     std::deque<Job> queue_;
@@ -65,6 +71,7 @@ private:
     bool stopping_ = false;
     std::exception_ptr failure_;
     std::vector<std::filesystem::path> written_;
+    std::vector<std::vector<uint8_t>> spare_;  // buffers of written frames, at most max_pending_ + 1
     std::thread worker_;
 };
 

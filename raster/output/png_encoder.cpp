@@ -1,11 +1,16 @@
 #include "raster/output/png_encoder.h"
 
+#include <tbb/enumerable_thread_specific.h>
 #include <tbb/parallel_for.h>
 #include <zlib.h>
 
 #include <algorithm>
 #include <cstdlib>
+#include <initializer_list>
 #include <stdexcept>
+
+#include "raster/output/adler32.h"
+#include "raster/output/rle_deflate.h"
 
 namespace tessera::output {
 namespace {
@@ -35,6 +40,19 @@ uint8_t paeth_predictor(int a, int b, int c) {
     return uint8_t(pa <= pb && pa <= pc ? a : (pb <= pc ? b : c));
 }
 
+// Paeth residuals of bytes [from, n) (from >= bpp): paeth_predictor in a branch-free form the
+// compiler vectorises (16-bit lanes): pa = |b - c|, pb = |a - c|, pc = |a + b - 2c| are
+// |p - a|, |p - b|, |p - c| for p = a + b - c, and the choice is the same.
+[[gnu::noinline]] void paeth_residuals(const uint8_t* __restrict row, const uint8_t* __restrict up,
+                                       uint8_t* __restrict r, size_t from, size_t n, size_t bpp) {
+    for (size_t i = from; i < n; ++i) {
+        const int a = row[i - bpp], b = up[i], c = up[i - bpp];
+        const int pa = std::abs(b - c), pb = std::abs(a - c), pc = std::abs(a + b - 2 * c);
+        const int predicted = pa <= pb && pa <= pc ? a : (pb <= pc ? b : c);
+        r[i] = uint8_t(row[i] - predicted);
+    }
+}
+
 // One filtered row: out[0] = the filter type, out[1 .. n] the residuals. `up` is the previous
 // row (zeros above the first row), `bpp` the bytes per pixel.
 void filter_row(uint8_t type, const uint8_t* row, const uint8_t* up, size_t n, size_t bpp, uint8_t* out) {
@@ -51,10 +69,13 @@ void filter_row(uint8_t type, const uint8_t* row, const uint8_t* up, size_t n, s
         case kAverage:
             for (size_t i = 0; i < n; ++i) r[i] = uint8_t(row[i] - ((i >= bpp ? row[i - bpp] : 0) + up[i]) / 2);
             break;
-        default:
-            for (size_t i = 0; i < n; ++i)
-                r[i] = uint8_t(row[i] - paeth_predictor(i >= bpp ? row[i - bpp] : 0, up[i], i >= bpp ? up[i - bpp] : 0));
+        default: {
+            // The first pixel has no left neighbour (a = c = 0: the predictor is `up`).
+            const size_t first = std::min(bpp, n);
+            for (size_t i = 0; i < first; ++i) r[i] = uint8_t(row[i] - paeth_predictor(0, up[i], 0));
+            paeth_residuals(row, up, r, first, n, bpp);
             break;
+        }
     }
 }
 
@@ -74,29 +95,38 @@ uint8_t choose_filter(const uint8_t* row, const uint8_t* up, size_t n, size_t bp
     return best;
 }
 
-void put32(std::vector<uint8_t>& out, uint32_t v) {
-    for (int s = 24; s >= 0; s -= 8) out.push_back(uint8_t(v >> s));
+void put32(uint8_t* out, uint32_t v) {
+    for (int i = 0; i < 4; ++i) out[i] = uint8_t(v >> (24 - 8 * i));
 }
 
-void put_chunk(std::vector<uint8_t>& out, const char type[4], const uint8_t* data, size_t n) {
-    put32(out, uint32_t(n));
+// A chunk (section 5.3): length, type, data, CRC of type and data. `data` is given in parts
+// (the zlib header, a band's deflate bytes, the Adler-32 trailer) so none is copied twice.
+void put_chunk(std::vector<uint8_t>& out, const char type[4], std::initializer_list<std::span<const uint8_t>> data) {
+    size_t n = 0;
+    for (const std::span<const uint8_t> part : data) n += part.size();
     const size_t start = out.size();
-    out.insert(out.end(), type, type + 4);
-    out.insert(out.end(), data, data + n);
-    put32(out, uint32_t(crc32(0, out.data() + start, uInt(n + 4))));
+    out.resize(start + 8 + n + 4);
+    uint8_t* p = out.data() + start;
+    put32(p, uint32_t(n));
+    std::copy_n(type, 4, p + 4);
+    uLong crc = crc32(0, p + 4, 4);
+    p += 8;
+    for (const std::span<const uint8_t> part : data) {
+        if (part.empty()) continue;
+        std::copy(part.begin(), part.end(), p);
+        crc = crc32(crc, p, uInt(part.size()));
+        p += part.size();
+    }
+    put32(p, uint32_t(crc));
 }
 
-struct Band {
-    std::vector<uint8_t> deflated;
-    uLong adler = 1;
-    size_t raw_bytes = 0;
-};
-
-void compress_band(const uint8_t* pixels, int width, int channels, int y0, int y1, bool last,
-                   const PngSettings& s, Band& band) {
+// Filters rows [y0, y1) into `filtered` (each row its filter byte then the residuals).
+void filter_band(const uint8_t* pixels, int width, int channels, int y0, int y1, const PngSettings& s,
+                 std::vector<uint8_t>& filtered, std::vector<uint8_t>& zeros, std::vector<uint8_t>& scratch) {
     const size_t n = size_t(width) * size_t(channels), bpp = size_t(channels);
-    const std::vector<uint8_t> zeros(y0 == 0 ? n : 0, 0);
-    std::vector<uint8_t> filtered(size_t(y1 - y0) * (n + 1)), scratch(s.filter == PngFilter::adaptive ? n + 1 : 0);
+    if (y0 == 0 && zeros.size() < n) zeros.assign(n, 0);
+    if (s.filter == PngFilter::adaptive && scratch.size() < n + 1) scratch.resize(n + 1);
+    filtered.resize(size_t(y1 - y0) * (n + 1));
     for (int y = y0; y < y1; ++y) {
         const uint8_t* row = pixels + size_t(y) * n;
         const uint8_t* up = y == 0 ? zeros.data() : row - n;
@@ -111,36 +141,36 @@ void compress_band(const uint8_t* pixels, int width, int channels, int y0, int y
         }
         filter_row(type, row, up, n, bpp, filtered.data() + size_t(y - y0) * (n + 1));
     }
-    band.raw_bytes = filtered.size();
-    band.adler = adler32(1, filtered.data(), uInt(filtered.size()));
-
-    z_stream z{};
-    // Raw deflate (negative window bits): the zlib header and trailer are written once, around
-    // all the bands.
-    if (deflateInit2(&z, s.level, Z_DEFLATED, -15, 9, s.run_length ? Z_RLE : Z_DEFAULT_STRATEGY) != Z_OK)
-        throw std::runtime_error("png: deflateInit2 failed");
-    band.deflated.resize(deflateBound(&z, uLong(filtered.size())) + 16);
-    z.next_in = filtered.data();
-    z.avail_in = uInt(filtered.size());
-    z.next_out = band.deflated.data();
-    z.avail_out = uInt(band.deflated.size());
-    const int status = deflate(&z, last ? Z_FINISH : Z_SYNC_FLUSH);
-    const bool ok = last ? status == Z_STREAM_END : (status == Z_OK && z.avail_in == 0 && z.avail_out > 0);
-    band.deflated.resize(band.deflated.size() - z.avail_out);
-    deflateEnd(&z);
-    if (!ok) throw std::runtime_error("png: deflate failed");
 }
 
 }  // namespace
 
-PngSettings parse_png_compression(std::string_view name) {
-    if (name == "fast") return PngSettings{};
-    if (name == "small") return PngSettings::smallest();
-    throw std::invalid_argument("--png: unknown compression '" + std::string(name) + "' (expected fast or small)");
-}
+// One thread's buffers for compressing bands.
+struct PngEncoder::Scratch {
+    struct Local {
+        std::vector<uint8_t> filtered, zeros, choose;
+        RleDeflate rle;
+        z_stream z{};
+        bool z_ready = false;
+        std::vector<uint8_t> z_out;
+        ~Local() {
+            if (z_ready) deflateEnd(&z);
+        }
+    };
+    tbb::enumerable_thread_specific<Local> local;
+};
 
-std::vector<uint8_t> encode_png(const uint8_t* pixels, int width, int height, int channels,
-                                const PngSettings& settings) {
+struct PngEncoder::Band {
+    std::vector<uint8_t> deflated;
+    uLong adler = 1;
+    size_t raw_bytes = 0;
+};
+
+PngEncoder::PngEncoder(const PngSettings& settings) : settings_(settings), scratch_(std::make_unique<Scratch>()) {}
+PngEncoder::~PngEncoder() = default;
+
+std::span<const uint8_t> PngEncoder::encode(const uint8_t* pixels, int width, int height, int channels) {
+    const PngSettings& settings = settings_;
     if (width <= 0 || height <= 0)
         throw std::invalid_argument("png: image size " + std::to_string(width) + "x" + std::to_string(height) +
                                     " is not positive");
@@ -151,24 +181,55 @@ std::vector<uint8_t> encode_png(const uint8_t* pixels, int width, int height, in
         throw std::invalid_argument("png: rows too wide");
 
     const int bands = (height + kPngBandRows - 1) / kPngBandRows;
-    std::vector<Band> band(static_cast<size_t>(bands));
+    if (bands_.size() < size_t(bands)) bands_.resize(size_t(bands));
+    const bool run_length = settings.run_length && settings.level >= 1;
     const auto compress = [&](int b) {
         const int y0 = b * kPngBandRows, y1 = std::min(height, y0 + kPngBandRows);
-        compress_band(pixels, width, channels, y0, y1, b + 1 == bands, settings, band[size_t(b)]);
+        const bool last = b + 1 == bands;
+        Scratch::Local& s = scratch_->local.local();
+        Band& band = bands_[size_t(b)];
+        filter_band(pixels, width, channels, y0, y1, settings, s.filtered, s.zeros, s.choose);
+        band.raw_bytes = s.filtered.size();
+        band.adler = adler32_update(1, s.filtered.data(), s.filtered.size());
+        if (run_length) {
+            const std::span<const uint8_t> out = s.rle.compress(s.filtered, last);
+            band.deflated.assign(out.begin(), out.end());
+            return;
+        }
+        // Raw deflate (negative window bits): the zlib header and trailer are written once,
+        // around all the bands.
+        if (!s.z_ready) {
+            if (deflateInit2(&s.z, settings.level, Z_DEFLATED, -15, 9,
+                             settings.run_length ? Z_RLE : Z_DEFAULT_STRATEGY) != Z_OK)
+                throw std::runtime_error("png: deflateInit2 failed");
+            s.z_ready = true;
+        } else if (deflateReset(&s.z) != Z_OK) {
+            throw std::runtime_error("png: deflateReset failed");
+        }
+        s.z_out.resize(deflateBound(&s.z, uLong(s.filtered.size())) + 16);
+        s.z.next_in = s.filtered.data();
+        s.z.avail_in = uInt(s.filtered.size());
+        s.z.next_out = s.z_out.data();
+        s.z.avail_out = uInt(s.z_out.size());
+        const int status = deflate(&s.z, last ? Z_FINISH : Z_SYNC_FLUSH);
+        const bool ok = last ? status == Z_STREAM_END : (status == Z_OK && s.z.avail_in == 0 && s.z.avail_out > 0);
+        if (!ok) throw std::runtime_error("png: deflate failed");
+        band.deflated.assign(s.z_out.data(), s.z_out.data() + (s.z_out.size() - s.z.avail_out));
     };
     if (kBandsInParallel)
         tbb::parallel_for(0, bands, compress);
     else
         for (int b = 0; b < bands; ++b) compress(b);
 
-    std::vector<uint8_t> out = {0x89, 'P', 'N', 'G', '\r', '\n', 0x1A, '\n'};
+    std::vector<uint8_t>& out = file_;
+    out.assign({0x89, 'P', 'N', 'G', '\r', '\n', 0x1A, '\n'});
     static constexpr uint8_t kColourType[5] = {0, 0, 4, 2, 6};  // grey, grey+alpha, RGB, RGBA
     const uint8_t header[13] = {uint8_t(width >> 24), uint8_t(width >> 16), uint8_t(width >> 8), uint8_t(width),
                                 uint8_t(height >> 24), uint8_t(height >> 16), uint8_t(height >> 8), uint8_t(height),
                                 8, kColourType[channels], 0, 0, 0};
-    put_chunk(out, "IHDR", header, sizeof header);
-    const uint8_t intent = 0;  // perceptual
-    put_chunk(out, "sRGB", &intent, 1);
+    put_chunk(out, "IHDR", {header});
+    const uint8_t intent[1] = {0};  // perceptual
+    put_chunk(out, "sRGB", {intent});
 
     // The zlib stream: a header (32K window, deflate; FCHECK makes it a multiple of 31), the
     // bands, the Adler-32 of all the filtered bytes. One IDAT chunk per band.
@@ -176,16 +237,36 @@ std::vector<uint8_t> encode_png(const uint8_t* pixels, int width, int height, in
     uint8_t zlib_header[2] = {0x78, uint8_t(level_bits << 6)};
     zlib_header[1] = uint8_t(zlib_header[1] + (31 - (zlib_header[0] * 256 + zlib_header[1]) % 31) % 31);
     uLong adler = 1;
-    for (const Band& b : band) adler = adler32_combine(adler, b.adler, z_off_t(b.raw_bytes));
+    size_t total = out.size() + 12;
     for (int b = 0; b < bands; ++b) {
-        std::vector<uint8_t>& data = band[size_t(b)].deflated;
-        if (b == 0) data.insert(data.begin(), zlib_header, zlib_header + 2);
-        if (b + 1 == bands)
-            for (int s = 24; s >= 0; s -= 8) data.push_back(uint8_t(adler >> s));
-        put_chunk(out, "IDAT", data.data(), data.size());
+        const Band& band = bands_[size_t(b)];
+        adler = adler32_combine(adler, band.adler, z_off_t(band.raw_bytes));
+        total += band.deflated.size() + 12;
     }
-    put_chunk(out, "IEND", nullptr, 0);
+    out.reserve(total + 6);
+    uint8_t trailer[4];
+    put32(trailer, uint32_t(adler));
+    for (int b = 0; b < bands; ++b) {
+        const std::span<const uint8_t> data = bands_[size_t(b)].deflated;
+        put_chunk(out, "IDAT",
+                  {std::span<const uint8_t>(zlib_header, b == 0 ? 2 : 0), data,
+                   std::span<const uint8_t>(trailer, b + 1 == bands ? 4 : 0)});
+    }
+    put_chunk(out, "IEND", {});
     return out;
+}
+
+std::vector<uint8_t> encode_png(const uint8_t* pixels, int width, int height, int channels,
+                                const PngSettings& settings) {
+    PngEncoder encoder(settings);
+    const std::span<const uint8_t> file = encoder.encode(pixels, width, height, channels);
+    return {file.begin(), file.end()};
+}
+
+PngSettings parse_png_compression(std::string_view name) {
+    if (name == "fast") return PngSettings{};
+    if (name == "small") return PngSettings::smallest();
+    throw std::invalid_argument("--png: unknown compression '" + std::string(name) + "' (expected fast or small)");
 }
 
 }  // namespace tessera::output

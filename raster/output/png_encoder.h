@@ -26,6 +26,8 @@
 #pragma once
 #include <cstddef>
 #include <cstdint>
+#include <memory>
+#include <span>
 #include <string>
 #include <string_view>
 #include <vector>
@@ -53,5 +55,31 @@ PngSettings parse_png_compression(std::string_view name);
 // outside 1 .. 2^31 - 1 or a channel count outside 1..4, std::runtime_error if zlib fails.
 std::vector<uint8_t> encode_png(const uint8_t* pixels, int width, int height, int channels,
                                 const PngSettings& settings = {});
+
+// encode_png for frame after frame: the buffers (filtered rows, compressor state, each band's
+// output, the file) are kept from one image to the next, so an animation's frames cost no
+// allocation, zeroing or page fault after the first. The run-length settings (run_length
+// and level >= 1) compress with RleDeflate (rle_deflate.h), zlib's bytes at a fraction of its
+// time; the others with zlib, its stream reset per band rather than made anew.
+// Not for concurrent use: one encoder per thread that writes.
+class PngEncoder {
+public:
+    explicit PngEncoder(const PngSettings& settings = {});
+    ~PngEncoder();
+    PngEncoder(const PngEncoder&) = delete;
+    PngEncoder& operator=(const PngEncoder&) = delete;
+
+    // As encode_png; the file is valid until the next call.
+    std::span<const uint8_t> encode(const uint8_t* pixels, int width, int height, int channels);
+    const PngSettings& settings() const { return settings_; }
+
+private:
+    struct Scratch;
+    struct Band;
+    const PngSettings settings_;
+    std::unique_ptr<Scratch> scratch_;
+    std::vector<Band> bands_;
+    std::vector<uint8_t> file_;
+};
 
 }  // namespace tessera::output

@@ -3,10 +3,13 @@
 #include <algorithm>
 #include <array>
 #include <bit>
+#include <cmath>
+#include <cstring>
 #include <limits>
 #include <stdexcept>
 
 #include "raster/core/color_space.h"
+#include "raster/simd/simd.h"
 
 namespace tessera::output {
 namespace {
@@ -18,6 +21,10 @@ constexpr uint32_t kBuckets = (kOneBits >> 16) - kFirstBucket;  // 14 exponents 
 
 struct Table {
     std::array<int32_t, kBuckets> first_level{};
+    // The same per bucket in one word for the lanes' single gather: first level << 17 | the
+    // low 16 bits of the next level's threshold when that threshold lies in the bucket (the
+    // bucket's values share their high 16 bits), else 2^16, which no value's low bits reach.
+    std::array<int32_t, kBuckets> packed{};
     // threshold[k]: the smallest float encoding to level k (k = 1..255); threshold[256] = inf.
     std::array<float, 257> threshold{};
 
@@ -40,6 +47,8 @@ struct Table {
             // The one-comparison rule needs at most one threshold inside a bucket.
             if (srgb8_reference(std::bit_cast<float>(last)) > level + 1)
                 throw std::logic_error("srgb8: a bucket spans more than two levels");
+            const uint32_t next = std::bit_cast<uint32_t>(threshold[level + 1]);
+            packed[b] = int32_t(level << 17 | ((next >> 16) == (start >> 16) ? (next & 0xFFFFu) : 0x10000u));
         }
         if (srgb8_reference(std::bit_cast<float>(kLowBits - 1)) != 0)
             throw std::logic_error("srgb8: values below 2^-14 must encode to 0");
@@ -73,17 +82,48 @@ uint8_t alpha8(float alpha) {
 
 uint8_t srgb8(float linear) { return lookup(table(), linear); }
 
-void encode_srgb8(const glm::vec4* pixels, size_t n, uint8_t* out) {
+bool encode_srgb8(const glm::vec4* pixels, size_t n, uint8_t* out) {
     const Table& t = table();
     const float* in = &pixels[0].x;
-    for (size_t i = 0; i < 4 * n; ++i) {
-        const float c = in[i];
-        // Lanes 3, 7, ... are alpha: computed for every lane and selected, so the loop has no
-        // branch on the channel and stays one vector loop.
-        const uint8_t colour = lookup(t, c);
-        const float a = c > 0.0f ? std::min(c, 1.0f) : 0.0f;
-        out[i] = (i & 3) == 3 ? uint8_t(a * 255.0f + 0.5f) : colour;
+    const size_t values = 4 * n;
+    size_t i = 0;
+    bool finite = true;
+    if constexpr (simd::kLanes % 4 == 0) {
+        // kLanes values (kLanes / 4 pixels) per step: lookup() and alpha8() lane for lane, the
+        // two table reads as one gather of `packed`. Alpha lanes (3, 7, ...) are computed as
+        // colour too and selected, so the loop has no branch on the channel.
+        using simd::vfloat;
+        using simd::vint;
+        using simd::vmask;
+        const vfloat low(std::bit_cast<float>(kLowBits)), one(1.0f), below_one(std::bit_cast<float>(kOneBits - 1));
+        const vfloat zero(0.0f);
+        const vmask alpha_lane = (simd::lane_index() & vint(3)) == vint(3);
+        const vint exponent_bits(0x7F800000);
+        vmask non_finite(false);
+        for (; i + simd::kLanes <= values; i += simd::kLanes) {
+            vfloat c;
+            std::memcpy(&c, in + i, sizeof c);
+            const vmask from_low = low <= c, from_one = one <= c;  // NaN: neither
+            const vfloat inside = simd::select(from_low, simd::select(from_one, below_one, c), low);
+            const vint b = simd::bits_of(inside);
+            const vint entry = simd::bits_of(simd::gather(reinterpret_cast<const float*>(t.packed.data()),
+                                                          (b >> vint(16)) - vint(int32_t(kFirstBucket))));
+            const vint level = (entry >> vint(17)) +
+                               simd::select((b & vint(0xFFFF)) >= (entry & vint(0x1FFFF)), vint(1), vint(0));
+            const vint colour = simd::select(from_one, vint(255), simd::select(from_low, level, vint(0)));
+            const vfloat a = simd::select(zero < c, simd::select(one < c, one, c), zero);
+            const vint alpha = simd::round_to_int(simd::floor(a * vfloat(255.0f) + vfloat(0.5f)));
+            simd::store_low_bytes(out + i, simd::select(alpha_lane, alpha, colour));
+            non_finite = non_finite | ((simd::bits_of(c) & exponent_bits) == exponent_bits);
+        }
+        finite = !simd::any(non_finite);
     }
+    for (; i < values; ++i) {
+        const float c = in[i];
+        out[i] = (i & 3) == 3 ? alpha8(c) : lookup(t, c);
+        finite &= std::isfinite(c);
+    }
+    return finite;
 }
 
 }  // namespace tessera::output

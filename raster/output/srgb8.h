@@ -26,7 +26,10 @@ uint8_t alpha8(float alpha);
 // The table form of srgb8_reference.
 uint8_t srgb8(float linear);
 
-// n pixels of linear RGBA to 8-bit RGBA (RGB sRGB-encoded, alpha linear), 4 n bytes.
-void encode_srgb8(const glm::vec4* pixels, size_t n, uint8_t* out);
+// n pixels of linear RGBA to 8-bit RGBA (RGB sRGB-encoded, alpha linear), 4 n bytes: srgb8()
+// and alpha8() value by value, simd::kLanes values at a time (the two table reads one
+// gather). Returns false when some value is NaN or infinite (encoded as those functions say),
+// so that the caller need not read the frame again to find out.
+bool encode_srgb8(const glm::vec4* pixels, size_t n, uint8_t* out);
 
 }  // namespace tessera::output

@@ -236,10 +236,15 @@ void Rasterizer::render(const Mesh& mesh, const glm::mat4& view_projection, cons
         frame_part.colour_stride = size_t(grid.size);
         const TileContext context = context_for(frame_part, work);
         for (const TilePass& pass : passes) pass(context);
-        if (color)
+        if (color) {
+            // Streamed out: nothing reads the frame's colour before the tiles are done, and
+            // non-temporal stores save reading each destination line first.
             for (int y = 0; y < h; ++y)
-                std::memcpy(color->data() + size_t(rect.y0 + y) * viewport.width + rect.x0,
-                            scratch.color.data() + size_t(y) * grid.size, size_t(w) * sizeof(glm::vec4));
+                simd::stream_copy(reinterpret_cast<uint32_t*>(color->data() + size_t(rect.y0 + y) * viewport.width + rect.x0),
+                                  reinterpret_cast<const uint32_t*>(scratch.color.data() + size_t(y) * grid.size),
+                                  size_t(w) * 4);
+            simd::stream_fence();
+        }
         if (stats) pass_ns += std::chrono::duration_cast<std::chrono::nanoseconds>(Clock::now() - pass_start).count();
     });
 

@@ -1,10 +1,12 @@
 #include "raster/render/frame_renderer.h"
 
+#include <tbb/blocked_range.h>
 #include <tbb/enumerable_thread_specific.h>
 #include <tbb/parallel_for.h>
 
 #include <algorithm>
 #include <atomic>
+#include <cmath>
 #include <chrono>
 #include <functional>
 #include <memory>
@@ -27,6 +29,7 @@
 #include "raster/march/metaball_orbits.h"
 #include "raster/march/procedural_surfaces.h"
 #include "raster/march/surface_pass.h"
+#include "raster/output/srgb8.h"
 #include "raster/shade/alpha_test.h"
 #include "raster/shade/frame_shading.h"
 #include "raster/shade/outline.h"
@@ -163,9 +166,20 @@ struct FrameRenderer::Impl {
     void frame(float time, FrameStats* stats, const Body& body);
     void prepare(float time, FrameState& frame, FrameStats& stats);
     // Renders `region` into `colour` (resized to region.width x region.height), shading only
-    // the tiles that meet rows [rows_from, rows_to) of the region.
+    // the tiles that meet rows [rows_from, rows_to) of the region. With `rgba8` (the whole
+    // frame only), the finished tiles are encoded there instead (render_srgb8), and `colour`
+    // holds what the tiles needed of a float frame (nothing, for single-sampled raster tiles).
+    struct Rgba8Target {
+        uint8_t* bytes;
+        std::atomic<uint64_t> non_finite{0};
+    };
     void render_region(const FrameState& frame, const Region& region, std::vector<glm::vec4>& colour,
-                       int rows_from, int rows_to, FrameStats& stats);
+                       int rows_from, int rows_to, FrameStats& stats, Rgba8Target* rgba8 = nullptr);
+    // Encodes rows [rect.y0, rect.y1) x [rect.x0, rect.x1) of a tile's colours (`colour` at
+    // (rect.x0, rect.y0), rows `stride` apart) into `rgba8`.
+    void encode_tile(const TileRect& rect, const glm::vec4* colour, size_t stride, Rgba8Target& rgba8) const;
+    // render_srgb8's float frame where tiles need one (ray casting, multisampled rasters).
+    std::vector<glm::vec4> float_frame;
     // The tile passes of one tile: shading, shadows, transparency, compute passes. `context`:
     // the rasterizer's, whose bins hold the transparent triangles (null under ray casting).
     void run_tile_passes(const FrameState& frame, const RegionPasses& passes, const VisibilityBuffer& visibility,
@@ -230,6 +244,35 @@ void FrameRenderer::render(float time, Frame& frame, FrameStats* stats) {
         im.render_region(state, Region{im.scene.scene.camera, im.width, im.height}, frame.pixels, im.rows_first,
                          im.rows_last, st);
     });
+}
+
+size_t FrameRenderer::render_srgb8(float time, std::vector<uint8_t>& rgba8, FrameStats* stats) {
+    Impl& im = *impl_;
+    if (needs_bands(im.width, im.height))
+        throw std::invalid_argument("a " + std::to_string(im.width) + "x" + std::to_string(im.height) +
+                                    " frame is rendered in bands (render_bands)");
+    // Every pixel is written below, so a reused buffer needs no clearing.
+    rgba8.resize(size_t(im.width) * size_t(im.height) * 4);
+    Impl::Rgba8Target target{rgba8.data()};
+    im.frame(time, stats, [&](const FrameState& state, FrameStats& st) {
+        im.render_region(state, Region{im.scene.scene.camera, im.width, im.height}, im.float_frame, im.rows_first,
+                         im.rows_last, st, &target);
+    });
+    return target.non_finite.load();
+}
+
+void FrameRenderer::Impl::encode_tile(const TileRect& rect, const glm::vec4* colour, size_t stride,
+                                      Rgba8Target& rgba8) const {
+    const size_t n = size_t(rect.width());
+    for (int y = rect.y0; y < rect.y1; ++y) {
+        const glm::vec4* row = colour + size_t(y - rect.y0) * stride;
+        if (output::encode_srgb8(row, n, rgba8.bytes + (size_t(y) * size_t(width) + size_t(rect.x0)) * 4)) continue;
+        uint64_t bad = 0;
+        for (size_t i = 0; i < n; ++i)
+            bad += !(std::isfinite(row[i].r) && std::isfinite(row[i].g) && std::isfinite(row[i].b) &&
+                     std::isfinite(row[i].a));
+        rgba8.non_finite += bad;
+    }
 }
 
 void FrameRenderer::render_bands(float time, const BandLayout& layout, const BandFilter& mine,
@@ -374,21 +417,26 @@ void FrameRenderer::Impl::shade_shadows(const FrameState& frame, const RegionPas
                                         const VisibilityBuffer& visibility, const Tile& tile,
                                         std::atomic<uint64_t>& shadowed) const {
     TraceScope t("shadow test", "tile");
-    shadow::SurfacePoints points;
-    shadow::gather_surface_points(tile, size_t(visibility.width), frame.baked.mesh, passes.pixel_rays, points);
-    std::vector<uint8_t> lit(points.size(), 0), facing(points.size(), 0);
-    shadow::facing_lights(points, frame.light_targets, facing);
+    // Per thread, kept from tile to tile.
+    thread_local shadow::SurfacePoints points;
+    thread_local std::vector<uint8_t> lit;
+    thread_local std::vector<std::vector<shade::CoveredPixel>> groups;
+    thread_local std::vector<glm::vec4> colours;
+    shadow::gather_surface_points(tile, size_t(visibility.width), frame.baked.mesh, passes.pixel_rays, points,
+                                  frame.light_targets);
+    lit.assign(points.size(), 0);
     frame.light_test(points, frame.light_targets, lit);
     const uint32_t all_lit = passes.all_lit;
-    std::vector<std::vector<shade::CoveredPixel>> groups(all_lit);
+    groups.resize(std::max<size_t>(groups.size(), all_lit));
+    for (uint32_t mask = 0; mask < all_lit; ++mask) groups[mask].clear();
     const uint32_t w = uint32_t(visibility.width);
+    const std::vector<uint8_t>& facing = points.facing;
     for (size_t i = 0; i < points.size(); ++i) {
         const uint32_t mask = (lit[i] | ~facing[i]) & all_lit;
         if (mask == all_lit) continue;
         const uint32_t p = points.pixel[i];
         groups[mask].push_back({int(p % w), int(p / w), tile.triangle_at(int(p % w), int(p / w))});
     }
-    std::vector<glm::vec4> colours;
     for (uint32_t mask = 0; mask < all_lit; ++mask) {
         if (groups[mask].empty()) continue;
         colours.resize(groups[mask].size());
@@ -457,7 +505,7 @@ void FrameRenderer::Impl::run_tile_passes(const FrameState& frame, const RegionP
 
 void FrameRenderer::Impl::render_region(const FrameState& frame, const Region& region,
                                         std::vector<glm::vec4>& colour, int rows_from, int rows_to,
-                                        FrameStats& stats) {
+                                        FrameStats& stats, Rgba8Target* rgba8) {
     const int w = region.width, h = region.height;
     const RegionPasses passes(scene, frame, region, terrains);
     std::atomic<uint64_t> shadowed{0};
@@ -469,14 +517,25 @@ void FrameRenderer::Impl::render_region(const FrameState& frame, const Region& r
         pipeline::RasterOptions options;
         options.transparent = frame.transparent;
         options.samples = samples;
+        // 8-bit output, one sample: each tile is encoded from the rasterizer's colour tile
+        // (its clear colour where the passes did not run), and no float frame is written.
+        const bool encode_tiles = rgba8 && samples == 1;
         const pipeline::TilePass pass = [&](const pipeline::TileContext& c) {
-            if (!in_rows(c.rect)) return;
-            const TimedTile timed(clock);
-            run_tile_passes(frame, passes, visibility, c, &c, shadowed);
+            if (in_rows(c.rect)) {
+                const TimedTile timed(clock);
+                run_tile_passes(frame, passes, visibility, c, &c, shadowed);
+            }
+            if (encode_tiles) encode_tile(c.rect, c.colour, c.colour_stride, *rgba8);
         };
         pipeline::RasterStats raster;
+        if (encode_tiles) options.tile_color = true;
         rasterizer.render(frame.baked.mesh, region.camera.view_projection(), pipeline::Viewport(w, h), options,
-                          visibility, {&pass, 1}, &colour, &raster);
+                          visibility, {&pass, 1}, encode_tiles ? nullptr : &colour, &raster);
+        if (rgba8 && !encode_tiles)  // multisampled: the passes ran per layer; encode the resolved frame
+            tbb::parallel_for(tbb::blocked_range<int>(0, h, 16), [&](const tbb::blocked_range<int>& rows) {
+                encode_tile(TileRect{0, rows.begin(), w, rows.end()}, colour.data() + size_t(rows.begin()) * size_t(w),
+                            size_t(w), *rgba8);
+            });
         stats.raster += raster;
         stats.tiles_ms += raster.passes_ms;
         stats.visibility_ms += ms_since(t0) - raster.passes_ms;
@@ -506,25 +565,32 @@ void FrameRenderer::Impl::render_region(const FrameState& frame, const Region& r
                     run_tile_passes(frame, passes, visibility, l.layer(j, glm::vec4(0.0f)), nullptr, shadowed);
                     l.accumulate(j, &tile.colour_at(rect.x0, rect.y0), tile.colour_stride);
                 }
-                return;
-            }
-            if (in_rows(rect)) {
+            } else if (in_rows(rect)) {
                 run_tile_passes(frame, passes, visibility, tile, nullptr, shadowed);
-                return;
+            } else {
+                // Unshaded, as the rasterizer leaves such tiles (its clear colour), whatever the
+                // reused buffer held.
+                for (int y = rect.y0; y < rect.y1; ++y)
+                    std::fill_n(&tile.colour_at(rect.x0, y), rect.width(), glm::vec4(0.0f));
             }
-            // Unshaded, as the rasterizer leaves such tiles (its clear colour), whatever the
-            // reused buffer held.
-            for (int y = rect.y0; y < rect.y1; ++y)
-                std::fill_n(&tile.colour_at(rect.x0, y), rect.width(), glm::vec4(0.0f));
+            if (rgba8) encode_tile(rect, &tile.colour_at(rect.x0, rect.y0), tile.colour_stride, *rgba8);
         });
         stats.tiles_ms += ms_since(t0);
     }
-    if (shade::any_outlined(scene.scene.materials)) {
+    if (const shade::OutlinePass outlines(visibility, region.camera, frame.baked.triangle_material,
+                                          scene.scene.materials);
+        outlines.active()) {
         // Over the finished pixels (after fog): it reads the neighbours' depths, across tiles.
         TraceScope trace("outlines");
         const auto t0 = Clock::now();
-        shade::draw_outlines(visibility, region.camera, frame.baked.triangle_material, scene.scene.materials, colour,
-                             rows_from, rows_to);
+        const int first = std::max(rows_from, 0), last = std::min(rows_to, h);
+        if (first < last)
+            tbb::parallel_for(tbb::blocked_range<int>(first, last, 8), [&](const tbb::blocked_range<int>& rows) {
+                const TimedTile tile_time(clock);
+                const TimedPass timed(clock, TilePass::outline);
+                if (rgba8) outlines.run(rgba8->bytes, rows.begin(), rows.end());
+                else outlines.run(colour, rows.begin(), rows.end());
+            });
         stats.tiles_ms += ms_since(t0);
     }
     stats.shadowed_pixels += shadowed.load();

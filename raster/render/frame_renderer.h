@@ -28,6 +28,7 @@
 #include <functional>
 #include <memory>
 #include <string_view>
+#include <vector>
 
 #include "raster/core/frame.h"
 #include "raster/pipeline/rasterizer.h"
@@ -101,6 +102,14 @@ public:
     // The same into `frame`, whose storage is reused when it already has the renderer's size:
     // an animation renders every frame into one buffer instead of faulting in a new one.
     void render(float time, Frame& frame, FrameStats* stats = nullptr);
+
+    // The frame at `time` seconds as 8-bit RGBA into `rgba8` (resized to width x height x 4):
+    // byte for byte encode_srgb8 (output/srgb8.h) of render()'s frame, but each tile is
+    // encoded as soon as its passes are done, while its colours are in cache, and the
+    // rasterizer's single-sampled tiles never go through a float frame (the toon outlines then
+    // ink the encoded pixels). Returns the number of pixels with a NaN or infinite value (the
+    // caller refuses to write those). Throws as render().
+    size_t render_srgb8(float time, std::vector<uint8_t>& rgba8, FrameStats* stats = nullptr);
 
     // The frame at `time` seconds as the bands of `layout` (whose size must be the
     // renderer's): for each band b with mine(b), in increasing b, calls deliver(b, pixels)

@@ -12,6 +12,7 @@ std::string_view tile_pass_name(TilePass pass) {
         case TilePass::terrain: return "terrain";
         case TilePass::metaballs: return "metaballs";
         case TilePass::fog: return "fog";
+        case TilePass::outline: return "outline";
     }
     return "?";
 }

@@ -4,8 +4,10 @@
 // tile) and the times are summed over the frame's tiles, so they are thread time: on N threads
 // they add up to about N times the stage's wall time. `tiles_ms` is the same sum over whole
 // tiles (every pass plus what lies between them: gathering and resolving multisampled
-// layers), so the passes never add up to more than it. Timing is on only when the caller asks
-// for stats: without, a tile pays one null test per pass.
+// layers), so the passes never add up to more than it. The toon outlines run over the finished
+// frame, after the tiles, in blocks of rows: each block's time counts as the outline pass's
+// and as a whole tile's. Timing is on only when the caller asks for stats: without, a tile
+// pays one null test per pass.
 #pragma once
 #include <array>
 #include <atomic>
@@ -24,8 +26,9 @@ enum class TilePass {
     terrain,      // ray-marched height fields
     metaballs,    // ray-marched metaballs
     fog,          // fog over what is drawn
+    outline,      // toon outlines over the finished frame (after the tiles, by rows)
 };
-inline constexpr size_t kTilePasses = 8;
+inline constexpr size_t kTilePasses = 9;
 
 std::string_view tile_pass_name(TilePass pass);
 

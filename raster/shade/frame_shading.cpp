@@ -4,6 +4,7 @@
 #include <tbb/parallel_for.h>
 
 #include <algorithm>
+#include <bit>
 #include <stdexcept>
 #include <string>
 
@@ -118,17 +119,41 @@ void FrameShading::shade_with(std::span<const CoveredPixel> pixels, std::span<gl
 
     // Group by material, keeping the pixels' order within a group (counting sort); the
     // last bucket collects pixels without a valid triangle.
-    std::vector<uint32_t> count(material_count + 2, 0);
+    // Neighbouring pixels mostly share a material: counted by runs, a tile of one material
+    // costs no increment per pixel, and needs no sort.
+    // The runs are kept and placed whole, so no pass increments a counter per pixel.
+    struct Run {
+        uint32_t bucket, begin, end;
+    };
+    thread_local std::vector<uint32_t> count, order, next;
+    thread_local std::vector<Run> runs;
+    count.assign(material_count + 2, 0);
+    runs.clear();
     const auto bucket = [&](const CoveredPixel& f) {
         return f.triangle < baked_.triangle_material.size() ? size_t(baked_.triangle_material[f.triangle])
                                                             : material_count;
     };
-    for (const CoveredPixel& f : pixels) ++count[bucket(f) + 1];
+    size_t buckets_used = 0;
+    for (size_t i = 0; i < pixels.size();) {
+        const size_t b = bucket(pixels[i]);
+        size_t end = i + 1;
+        while (end < pixels.size() && bucket(pixels[end]) == b) ++end;
+        buckets_used += count[b + 1] == 0;
+        count[b + 1] += uint32_t(end - i);
+        runs.push_back({uint32_t(b), uint32_t(i), uint32_t(end)});
+        i = end;
+    }
     for (size_t i = 1; i < count.size(); ++i) count[i] += count[i - 1];
-    std::vector<uint32_t> order(pixels.size());
-    {
-        std::vector<uint32_t> next(count.begin(), count.end() - 1);
-        for (size_t i = 0; i < pixels.size(); ++i) order[next[bucket(pixels[i])]++] = uint32_t(i);
+    order.resize(pixels.size());
+    if (buckets_used <= 1) {
+        for (size_t i = 0; i < pixels.size(); ++i) order[i] = uint32_t(i);
+    } else {
+        next.assign(count.begin(), count.end() - 1);
+        for (const Run& r : runs) {
+            uint32_t* to = order.data() + next[r.bucket];
+            for (uint32_t i = r.begin; i < r.end; ++i) *to++ = i;
+            next[r.bucket] += r.end - r.begin;
+        }
     }
     for (size_t i = count[material_count]; i < pixels.size(); ++i)
         out[order[i]] = background(pixels[order[i]].x, pixels[order[i]].y);
@@ -148,6 +173,15 @@ void FrameShading::shade_with(std::span<const CoveredPixel> pixels, std::span<gl
             const int n = int(std::min<size_t>(kLanes, count[mat + 1] - start));
             uint32_t setup_for = kNoTriangle;  // consecutive pixels often share a triangle
             pipeline::PerspectiveBarycentrics setup{};
+            if constexpr (!std::is_same_v<F, float>) {
+                CoveredPixel lane_pixel[kLanes];
+                for (int lane = 0; lane < kLanes; ++lane) lane_pixel[lane] = pixels[order[start + size_t(lane < n ? lane : 0)]];
+                fill_lanes(lane_pixel, needs_uv, needs_colour, lanes);
+                shade::shade_lanes<F>(ctx, lanes, 0);
+                for (int l = 0; l < n; ++l)
+                    out[order[start + size_t(l)]] = {lanes.out[0][l], lanes.out[1][l], lanes.out[2][l], lanes.out[3][l]};
+                continue;
+            }
             for (int lane = 0; lane < kLanes; ++lane) {
                 // Idle lanes repeat the first pixel so every lane computes finite values.
                 const CoveredPixel& f = pixels[order[start + size_t(lane < n ? lane : 0)]];
@@ -190,6 +224,124 @@ void FrameShading::shade_with(std::span<const CoveredPixel> pixels, std::span<gl
     }
 }
 
+void FrameShading::fill_lanes(const CoveredPixel* lane_pixel, bool needs_uv, bool needs_colour, Lanes& lanes) const {
+    // The lanes in runs of one triangle (all of them, on triangles wider than the lanes): each
+    // run's corner attributes are broadcast to its lanes with a masked vector store per
+    // attribute instead of being written lane by lane; the values are the lane-by-lane path's.
+    using F = simd::vfloat;
+    const Mesh& mesh = baked_.mesh;
+    uint32_t setup_for = kNoTriangle;
+    pipeline::PerspectiveBarycentrics setup{};
+    int lane = 0;
+    while (lane < kLanes) {
+        const uint32_t triangle = lane_pixel[lane].triangle;
+        const int first = lane;
+        for (; lane < kLanes && lane_pixel[lane].triangle == triangle; ++lane) {
+            lanes.x[lane] = float(lane_pixel[lane].x) + 0.5f;
+            lanes.y[lane] = float(lane_pixel[lane].y) + 0.5f;
+        }
+        const simd::vint index = simd::lane_index();
+        const simd::vmask run = (simd::vint(first) < index + simd::vint(1)) & (index < simd::vint(lane));
+        const bool whole = first == 0 && lane == kLanes;
+        const auto fill = [&](float* lanes_of, float v) {
+            if (whole) F(v).store(lanes_of);
+            else simd::store_masked(lanes_of, run, F(v));
+        };
+        const uint32_t* corner = &mesh.indices[3 * size_t(triangle)];
+        if (triangle != setup_for) {
+            setup = pipeline::PerspectiveBarycentrics::from_clip(clip_[corner[0]], clip_[corner[1]], clip_[corner[2]],
+                                                                 state_.width, state_.height);
+            setup_for = triangle;
+        }
+        for (int k = 0; k < 3; ++k) {
+            const uint32_t vi = corner[k];
+            const glm::vec3 p = mesh.positions[vi];
+            const glm::vec3 nrm = mesh.normals.empty() ? glm::vec3(0.0f) : mesh.normals[vi];
+            for (int a = 0; a < 3; ++a) {
+                fill(lanes.bary[k][a], setup.e[k][a]);
+                fill(lanes.pos[k][a], p[a]);
+                fill(lanes.nrm[k][a], nrm[a]);
+            }
+            if (needs_uv) {
+                const glm::vec2 uv = mesh.uvs.empty() ? glm::vec2(0.0f) : mesh.uvs[vi];
+                fill(lanes.uv[k][0], uv.x);
+                fill(lanes.uv[k][1], uv.y);
+            }
+            if (needs_colour)
+                for (int a = 0; a < 3; ++a) fill(lanes.col[k][a], gouraud_[vi][a]);
+        }
+    }
+}
+
+void FrameShading::shade_tile_surfaces(const Tile& tile) const {
+    const size_t material_count = scene_.materials.size();
+    const std::vector<uint32_t>& triangle_material = baked_.triangle_material;
+    // Per thread, kept from tile to tile: the pixels left for shade().
+    thread_local std::vector<CoveredPixel> rest;
+    thread_local std::vector<glm::vec4> rest_colours;
+    rest.clear();
+    shade::KernelContext ctx;
+    ctx.lights = state_.lights;
+    ctx.eye = eye_;
+    size_t ctx_for = material_count;
+    bool needs_uv = false, needs_colour = false;
+    Lanes lanes;
+    CoveredPixel lane_pixel[kLanes];
+    for (int y = tile.rect.y0; y < tile.rect.y1; ++y)
+        for (int x0 = tile.rect.x0; x0 < tile.rect.x1; x0 += kLanes) {
+            const int n = std::min(kLanes, tile.rect.x1 - x0);
+            // The covered pixels of the group and whether they show one material.
+            uint32_t covered = 0;
+            size_t material = material_count;
+            bool one_material = true;
+            uint32_t previous = kNoTriangle;
+            for (int i = 0; i < n; ++i) {
+                const int x = x0 + i;
+                if (!tile.active(x, y)) continue;
+                const uint32_t id = tile.triangle_at(x, y);
+                if (id == kNoTriangle) continue;
+                covered |= 1u << i;
+                lane_pixel[i] = {x, y, id};
+                if (id == previous) continue;
+                previous = id;
+                const size_t m = id < triangle_material.size() ? size_t(triangle_material[id]) : material_count;
+                if (material == material_count && m < material_count && (covered & ((1u << i) - 1)) == 0) material = m;
+                one_material &= m == material;
+            }
+            if (covered == 0) continue;
+            if (!one_material || material == material_count) {
+                for (uint32_t c = covered; c; c &= c - 1) rest.push_back(lane_pixel[std::countr_zero(c)]);
+                continue;
+            }
+            // Idle lanes repeat the first covered pixel (shade()'s rule: finite values).
+            const CoveredPixel& first = lane_pixel[std::countr_zero(covered)];
+            for (int i = 0; i < kLanes; ++i)
+                if (i >= n || !(covered >> i & 1u)) lane_pixel[i] = first;
+            if (material != ctx_for) {
+                const scene::Material& m = scene_.materials[material];
+                ctx.material = &m;
+                ctx.diffuse = texture_of(scene_, m.diffuse_texture);
+                ctx.normal = m.model == scene::ShadingModel::gouraud ? nullptr : texture_of(scene_, m.normal_texture);
+                needs_uv = ctx.diffuse || ctx.normal;
+                needs_colour = m.model == scene::ShadingModel::gouraud;
+                ctx_for = material;
+            }
+            fill_lanes(lane_pixel, needs_uv, needs_colour, lanes);
+            shade::shade_lanes<simd::vfloat>(ctx, lanes, 0);
+            // Opaque surfaces cover the pixel whatever their material's opacity.
+            glm::vec4* out = &tile.colour_at(x0, y);
+            for (uint32_t c = covered; c; c &= c - 1) {
+                const int i = std::countr_zero(c);
+                out[i] = glm::vec4(lanes.out[0][i], lanes.out[1][i], lanes.out[2][i], 1.0f);
+            }
+        }
+    if (rest.empty()) return;
+    rest_colours.resize(rest.size());
+    shade(rest, rest_colours);
+    for (size_t i = 0; i < rest.size(); ++i)
+        tile.colour_at(rest[i].x, rest[i].y) = glm::vec4(glm::vec3(rest_colours[i]), 1.0f);
+}
+
 void FrameShading::shade(std::span<const CoveredPixel> pixels, std::span<glm::vec4> out) const {
     shade_with<simd::vfloat>(pixels, out);
 }
@@ -215,8 +367,11 @@ void shade_background_reference(const FrameShading& shading, const Tile& tile) {
             if (tile.active(x, y) && tile.triangle_at(x, y) == kNoTriangle) tile.colour_at(x, y) = shading.background(x, y);
 }
 
-void shade_surfaces(const FrameShading& shading, const Tile& tile) {
+void shade_surfaces(const FrameShading& shading, const Tile& tile) { shading.shade_tile_surfaces(tile); }
+
+void shade_surfaces_reference(const FrameShading& shading, const Tile& tile) {
     std::vector<CoveredPixel> pixels;
+    std::vector<glm::vec4> colours;
     pixels.reserve(size_t(tile.width()) * size_t(tile.height()));
     for (int y = tile.rect.y0; y < tile.rect.y1; ++y)
         for (int x = tile.rect.x0; x < tile.rect.x1; ++x) {
@@ -224,7 +379,7 @@ void shade_surfaces(const FrameShading& shading, const Tile& tile) {
             const uint32_t id = tile.triangle_at(x, y);
             if (id != kNoTriangle) pixels.push_back({x, y, id});
         }
-    std::vector<glm::vec4> colours(pixels.size());
+    colours.resize(pixels.size());
     shading.shade(pixels, colours);
     for (size_t i = 0; i < pixels.size(); ++i) {
         const CoveredPixel& f = pixels[i];

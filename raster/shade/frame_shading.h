@@ -67,9 +67,17 @@ public:
     const RenderState& state() const { return state_; }
     bool transparent(uint32_t triangle) const;
 
+    // The opaque surfaces of a tile (shade_surfaces): kLanes pixels of a row at a time where
+    // they show one material (the kernel's lanes filled straight from the row, the colours
+    // written back in place), the rest through shade(). Each pixel's colour is shade()'s.
+    void shade_tile_surfaces(const Tile& tile) const;
+
 private:
     template <class F>
     void shade_with(std::span<const CoveredPixel> pixels, std::span<glm::vec4> out) const;
+    // Fills `lanes` for the kLanes pixels lane_pixel[0 .. kLanes) (one material; idle lanes
+    // repeat a pixel of the group), in runs of one triangle.
+    void fill_lanes(const CoveredPixel* lane_pixel, bool needs_uv, bool needs_colour, struct Lanes& lanes) const;
 
     const scene::BakedScene& baked_;
     const scene::Scene& scene_;
@@ -87,6 +95,9 @@ private:
 // one pixel at a time through background(), is what it is tested against.
 void shade_tile(const FrameShading& shading, const Tile& tile);
 void shade_surfaces(const FrameShading& shading, const Tile& tile);
+// shade_surfaces as a list of the tile's covered pixels through FrameShading::shade(): what
+// the row-wise pass is tested against.
+void shade_surfaces_reference(const FrameShading& shading, const Tile& tile);
 void shade_background(const FrameShading& shading, const Tile& tile);
 void shade_background_reference(const FrameShading& shading, const Tile& tile);
 

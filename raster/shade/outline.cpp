@@ -1,10 +1,14 @@
 #include "raster/shade/outline.h"
 
 #include <algorithm>
+#include <bit>
 #include <cmath>
+#include <cstring>
 
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
+
+#include "raster/simd/simd.h"
 
 namespace tessera::shade {
 namespace {
@@ -28,9 +32,9 @@ bool any_outlined(std::span<const scene::Material> materials) {
                        [](const scene::Material& m) { return m.model == scene::ShadingModel::toon; });
 }
 
-void draw_outlines(const VisibilityBuffer& visibility, const Camera& camera,
-                   std::span<const uint32_t> triangle_material, std::span<const scene::Material> materials,
-                   std::vector<glm::vec4>& colour, int row_begin, int row_end) {
+void draw_outlines_reference(const VisibilityBuffer& visibility, const Camera& camera,
+                             std::span<const uint32_t> triangle_material, std::span<const scene::Material> materials,
+                             std::vector<glm::vec4>& colour, int row_begin, int row_end) {
     const int w = visibility.width, h = visibility.height;
     row_begin = std::max(row_begin, 0);
     row_end = std::min(row_end, h);
@@ -62,8 +66,7 @@ void draw_outlines(const VisibilityBuffer& visibility, const Camera& camera,
         return step > kOutlineStep && crease > kOutlineStep;
     };
 
-    tbb::parallel_for(tbb::blocked_range<int>(row_begin, row_end, 8), [&](const tbb::blocked_range<int>& rows) {
-        for (int y = rows.begin(); y < rows.end(); ++y)
+    for (int y = row_begin; y < row_end; ++y)
             for (int x = 0; x < w; ++x) {
                 const size_t i = size_t(y) * size_t(w) + size_t(x);
                 const uint32_t t = visibility.triangle[i];
@@ -75,7 +78,132 @@ void draw_outlines(const VisibilityBuffer& visibility, const Camera& camera,
                 if (edge(m, wp, x - 1, y, x + 1, y, x > 0, x + 1 < w) || edge(m, wp, x, y - 1, x, y + 1, y > 0, y + 1 < h))
                     colour[i] = glm::vec4(0.0f, 0.0f, 0.0f, colour[i].a);
             }
-    });
+}
+
+void draw_outlines(const VisibilityBuffer& visibility, const Camera& camera,
+                   std::span<const uint32_t> triangle_material, std::span<const scene::Material> materials,
+                   std::vector<glm::vec4>& colour, int row_begin, int row_end) {
+    const OutlinePass pass(visibility, camera, triangle_material, materials);
+    if (!pass.active()) return;
+    tbb::parallel_for(tbb::blocked_range<int>(std::max(row_begin, 0), std::min(row_end, visibility.height), 8),
+                      [&](const tbb::blocked_range<int>& rows) { pass.run(colour, rows.begin(), rows.end()); });
+}
+
+OutlinePass::OutlinePass(const VisibilityBuffer& visibility, const Camera& camera,
+                         std::span<const uint32_t> triangle_material, std::span<const scene::Material> materials)
+    : visibility_(visibility), near_(camera.near), far_(camera.far), triangle_material_(triangle_material) {
+    toon_.resize(materials.size());
+    for (size_t m = 0; m < materials.size(); ++m) {
+        toon_[m] = materials[m].model == scene::ShadingModel::toon;
+        active_ |= toon_[m] != 0;
+    }
+}
+
+void OutlinePass::run(std::vector<glm::vec4>& colour, int row_begin, int row_end) const {
+    run_rows(
+        [&](size_t i) {
+            glm::vec4& p = colour[i];
+            p = glm::vec4(0.0f, 0.0f, 0.0f, p.a);
+        },
+        row_begin, row_end);
+}
+
+void OutlinePass::run(uint8_t* rgba8, int row_begin, int row_end) const {
+    run_rows([&](size_t i) { rgba8[4 * i] = rgba8[4 * i + 1] = rgba8[4 * i + 2] = 0; }, row_begin, row_end);
+}
+
+template <class Ink>
+void OutlinePass::run_rows(const Ink& ink, int row_begin, int row_end) const {
+    using simd::kLanes;
+    using simd::vfloat;
+    using simd::vint;
+    using simd::vmask;
+    const int w = visibility_.width, h = visibility_.height;
+    row_begin = std::max(row_begin, 0);
+    row_end = std::min(row_end, h);
+    if (row_begin >= row_end || !active_) return;
+    const InverseDistance inverse{near_, far_};
+
+    // What the tests read of one row, at index x + 1 (one slot of padding each side, and a
+    // vector's worth after, so that the lanes' neighbour loads stay inside): 1/distance, the
+    // material shown (-1 for none), and whether it is background (-1) or not (0).
+    struct Row {
+        std::vector<float> w;
+        std::vector<int32_t> material, background;
+    };
+    const size_t padded = size_t(w) + 2 + size_t(kLanes);
+    Row rows[3];
+    const auto load = [&](int y, Row& r) {
+        r.w.assign(padded, 0.0f);
+        r.material.assign(padded, -1);
+        r.background.assign(padded, 0);
+        const float* depth = visibility_.depth.data() + size_t(y) * size_t(w);
+        const uint32_t* triangle = visibility_.triangle.data() + size_t(y) * size_t(w);
+        float* rw = r.w.data() + 1;
+        for (int x = 0; x < w; ++x) rw[x] = inverse(depth[x]);  // vectorises (double lanes)
+        for (int x = 0; x < w; ++x) {
+            const uint32_t t = triangle[x];
+            r.material[size_t(x) + 1] = t < triangle_material_.size() ? int32_t(triangle_material_[t]) : -1;
+            r.background[size_t(x) + 1] = is_background(depth[x]) ? -1 : 0;
+        }
+    };
+    const auto floats = [](const float* p) {
+        vfloat v;
+        std::memcpy(&v, p, sizeof v);
+        return v;
+    };
+    const auto ints = [](const int32_t* p) {
+        vint v;
+        std::memcpy(&v, p, sizeof v);
+        return v;
+    };
+    const int32_t toon_count = int32_t(toon_.size());
+    const vfloat zero(0.0f), step_limit(kOutlineStep);
+    const vint no(0), lanes = simd::lane_index();
+    Row* above = &rows[0];
+    Row* here = &rows[1];
+    Row* below = &rows[2];
+    if (row_begin > 0) load(row_begin - 1, *above);
+    load(row_begin, *here);
+    for (int y = row_begin; y < row_end; ++y) {
+        if (y + 1 < h) load(y + 1, *below);
+        const vmask up(y > 0), down(y + 1 < h);
+        const size_t row = size_t(y) * size_t(w);
+        for (int x = 0; x < w; x += kLanes) {
+            const size_t c = size_t(x) + 1;  // this lane block's first pixel in the rows
+            const vint column = vint(x) + lanes;
+            const vint m = ints(&here->material[c]);
+            // A pixel of a toon material (draw_outlines_reference's tests, lane by lane).
+            const vmask known = (m >= no) & (m < vint(toon_count)) & (column < vint(w));
+            const vint toon = simd::bits_of(simd::gather(reinterpret_cast<const float*>(toon_.data()), simd::select(known, m, no)));
+            const vfloat wp = floats(&here->w[c]);
+            const vmask candidate = known & (toon == vint(1)) & (zero < wp);
+            if (!simd::any(candidate)) continue;
+            // A neighbour that is background, or shows another material farther away.
+            const auto side = [&](const Row& r, size_t q) {
+                const vint bg = ints(&r.background[q]);
+                return (bg == vint(-1)) | (andnot(ints(&r.material[q]) == m, vmask(true)) & (floats(&r.w[q]) < wp));
+            };
+            // A crease with one side farther: std::min, then the two relative measures.
+            const auto crease = [&](vfloat a, vfloat b) {
+                const vfloat nearer = simd::select(b < a, b, a);
+                const vfloat step = (wp - nearer) / wp;
+                const vfloat sum = (a + b) - vfloat(2.0f) * wp;
+                const vfloat bend = simd::float_of_bits(simd::bits_of(sum) & vint(0x7FFFFFFF)) / wp;
+                return (step_limit < step) & (step_limit < bend);
+            };
+            const vmask left = vint(0) < column, right = column + vint(1) < vint(w);
+            vmask inked = (left & side(*here, c - 1)) | (right & side(*here, c + 1)) |
+                          (left & right & crease(floats(&here->w[c - 1]), floats(&here->w[c + 1])));
+            if (y > 0) inked = inked | (up & side(*above, c));
+            if (y + 1 < h) inked = inked | (down & side(*below, c));
+            if (y > 0 && y + 1 < h) inked = inked | crease(floats(&above->w[c]), floats(&below->w[c]));
+            for (uint32_t bits = simd::bits(inked & candidate); bits; bits &= bits - 1)
+                ink(row + size_t(x + std::countr_zero(bits)));
+        }
+        std::swap(above, here);
+        std::swap(here, below);
+    }
 }
 
 }  // namespace tessera::shade

@@ -1,7 +1,10 @@
 #include "raster/shadow/surface_points.h"
 
 #include <algorithm>
+#include <bit>
 #include <cmath>
+
+#include "raster/simd/simd.h"
 
 namespace tessera::shadow {
 namespace {
@@ -44,8 +47,8 @@ void gather_surface_points(const VisibilityBuffer& visibility, const Mesh& mesh,
     gather_surface_points(tile, size_t(visibility.width), mesh, rays, out);
 }
 
-void gather_surface_points(const Tile& tile, size_t image_width, const Mesh& mesh, const PixelRays& rays,
-                           SurfacePoints& out) {
+void gather_surface_points_reference(const Tile& tile, size_t image_width, const Mesh& mesh, const PixelRays& rays,
+                                     SurfacePoints& out) {
     out.clear();
     const TileRect& rect = tile.rect;
     const size_t area = size_t(rect.width()) * size_t(rect.height());
@@ -90,6 +93,142 @@ void gather_surface_points(const Tile& tile, size_t image_width, const Mesh& mes
                     out.normal.push_back((facing > 0.0f ? -plane.normal : plane.normal) /
                                          plane.length);
                 }
+}
+
+namespace {
+
+// The planes of the triangles a tile shows, by slot (structure of arrays, for the lanes'
+// gathers), found through a direct-mapped table of triangle ids.
+struct PlaneTable {
+    static constexpr uint32_t kLookup = 1u << 12;
+    std::vector<float> px, py, pz, nx, ny, nz, length;
+    std::vector<uint32_t> id;
+    std::vector<int32_t> lookup = std::vector<int32_t>(kLookup, -1);
+
+    void clear() {
+        for (uint32_t t : id) lookup[t & (kLookup - 1)] = -1;
+        for (std::vector<float>* v : {&px, &py, &pz, &nx, &ny, &nz, &length}) v->clear();
+        id.clear();
+    }
+    int32_t slot(const Mesh& mesh, uint32_t triangle) {
+        int32_t& entry = lookup[triangle & (kLookup - 1)];
+        if (entry >= 0 && id[size_t(entry)] == triangle) return entry;
+        const Plane p = plane_of(mesh, triangle);
+        entry = int32_t(id.size());
+        id.push_back(triangle);
+        px.push_back(p.point.x), py.push_back(p.point.y), pz.push_back(p.point.z);
+        nx.push_back(p.normal.x), ny.push_back(p.normal.y), nz.push_back(p.normal.z);
+        length.push_back(p.length);
+        return entry;
+    }
+};
+
+simd::vmask finite_lanes(simd::vfloat v) {
+    const simd::vint exponent(0x7F800000);
+    return simd::andnot((simd::bits_of(v) & exponent) == exponent, simd::vmask(true));
+}
+
+}  // namespace
+
+void gather_surface_points(const Tile& tile, size_t image_width, const Mesh& mesh, const PixelRays& rays,
+                           SurfacePoints& out, std::span<const glm::vec3> lights) {
+    using simd::kLanes;
+    using simd::vfloat;
+    using simd::vint;
+    using simd::vmask;
+    static_assert(16 % kLanes == 0, "lane groups tile a 4x4 block");
+    out.clear();
+    const TileRect& rect = tile.rect;
+    const size_t area = size_t(rect.width()) * size_t(rect.height());
+    out.pixel.reserve(area);
+    out.position.reserve(area);
+    out.normal.reserve(area);
+    if (!lights.empty()) out.facing.reserve(area);
+    const size_t light_count = std::min(lights.size(), size_t(8));
+    for (int y = rect.y0; y < rect.y1; ++y)  // the ids' lines, before the blocks read them (see the reference)
+        for (int x = rect.x0; x < rect.x1; x += 16) __builtin_prefetch(&tile.triangle_at(x, y));
+    thread_local PlaneTable planes;
+    planes.clear();
+    constexpr int kBlock = 4;
+    alignas(64) float xc[kLanes], yc[kLanes], ox[kLanes], oy[kLanes], oz[kLanes], dx[kLanes], dy[kLanes], dz[kLanes];
+    alignas(64) int32_t slot[kLanes], pixel[kLanes];
+    const PixelRays::RayArrays ray_out{ox, oy, oz, dx, dy, dz};
+    for (int by = rect.y0; by < rect.y1; by += kBlock)
+        for (int bx = rect.x0; bx < rect.x1; bx += kBlock)
+            for (int first = 0; first < kBlock * kBlock; first += kLanes) {
+                // Lane i: pixel (bx + (first + i) % 4, by + (first + i) / 4), row-major in the
+                // block like the reference; lanes outside the tile or without a triangle are off.
+                uint32_t on = 0;
+                uint32_t cached = kNoTriangle;
+                int32_t cached_slot = 0;
+                for (int i = 0; i < kLanes; ++i) {
+                    const int x = bx + (first + i) % kBlock, y = by + (first + i) / kBlock;
+                    slot[i] = 0;
+                    xc[i] = yc[i] = 0.5f;
+                    if (x >= rect.x1 || y >= rect.y1) continue;
+                    const uint32_t triangle = tile.triangle_at(x, y);
+                    if (triangle == kNoTriangle) continue;
+                    if (triangle != cached) {
+                        cached = triangle;
+                        cached_slot = planes.slot(mesh, triangle);
+                    }
+                    if (planes.length[size_t(cached_slot)] == 0.0f) continue;
+                    slot[i] = cached_slot;
+                    pixel[i] = int32_t(size_t(y) * image_width + size_t(x));
+                    on |= 1u << i;
+                    if (tile.centroid) {  // a point on the surface (coverage_layers.h)
+                        const glm::vec2 at = tile.centroid[tile.offset(x, y)];
+                        xc[i] = float(x) + 0.5f + at.x;
+                        yc[i] = float(y) + 0.5f + at.y;
+                    } else {
+                        xc[i] = float(x) + 0.5f;
+                        yc[i] = float(y) + 0.5f;
+                    }
+                }
+                if (on == 0) continue;
+                rays.rays(size_t(kLanes), xc, yc, ray_out);
+                const vint s = vint::load(slot);
+                const vfloat n_x = simd::gather(planes.nx.data(), s), n_y = simd::gather(planes.ny.data(), s),
+                             n_z = simd::gather(planes.nz.data(), s);
+                const vfloat o_x = vfloat::load(ox), o_y = vfloat::load(oy), o_z = vfloat::load(oz);
+                const vfloat d_x = vfloat::load(dx), d_y = vfloat::load(dy), d_z = vfloat::load(dz);
+                // t = n.(a - o) / n.d, glm's dot order ((x + y) + z).
+                const vfloat facing = n_x * d_x + n_y * d_y + n_z * d_z;
+                const vfloat a_x = simd::gather(planes.px.data(), s) - o_x, a_y = simd::gather(planes.py.data(), s) - o_y,
+                             a_z = simd::gather(planes.pz.data(), s) - o_z;
+                const vfloat t = (n_x * a_x + n_y * a_y + n_z * a_z) / facing;
+                const vfloat p_x = o_x + t * d_x, p_y = o_y + t * d_y, p_z = o_z + t * d_z;
+                const uint32_t kept = on & simd::bits(finite_lanes(p_x) & finite_lanes(p_y) & finite_lanes(p_z));
+                if (kept == 0) continue;
+                const vmask flip = vfloat(0.0f) < facing;
+                // -n as the reference negates (times -1 is exact, signed zeros included).
+                const vfloat length = simd::gather(planes.length.data(), s), minus(-1.0f);
+                const vfloat u_x = simd::select(flip, n_x * minus, n_x) / length,
+                             u_y = simd::select(flip, n_y * minus, n_y) / length,
+                             u_z = simd::select(flip, n_z * minus, n_z) / length;
+                alignas(64) float position[3][kLanes], normal[3][kLanes];
+                p_x.store(position[0]), p_y.store(position[1]), p_z.store(position[2]);
+                u_x.store(normal[0]), u_y.store(normal[1]), u_z.store(normal[2]);
+                alignas(64) int32_t faces[kLanes];
+                if (light_count > 0) {
+                    vint bits(0);
+                    for (size_t l = 0; l < light_count; ++l) {
+                        const glm::vec3& light = lights[l];
+                        // faces_light: dot(normal, light - position) > 0.
+                        const vfloat f = u_x * (vfloat(light.x) - p_x) + u_y * (vfloat(light.y) - p_y) +
+                                         u_z * (vfloat(light.z) - p_z);
+                        bits = bits | simd::select(vfloat(0.0f) < f, vint(int32_t(1u << l)), vint(0));
+                    }
+                    bits.store(faces);
+                }
+                for (uint32_t k = kept; k; k &= k - 1) {
+                    const int i = std::countr_zero(k);
+                    out.pixel.push_back(uint32_t(pixel[i]));
+                    out.position.push_back({position[0][i], position[1][i], position[2][i]});
+                    out.normal.push_back({normal[0][i], normal[1][i], normal[2][i]});
+                    if (light_count > 0) out.facing.push_back(uint8_t(faces[i]));
+                }
+            }
 }
 
 }  // namespace tessera::shadow

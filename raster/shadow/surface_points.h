@@ -10,6 +10,7 @@
 #include <glm/glm.hpp>
 
 #include <cstdint>
+#include <span>
 #include <vector>
 
 #include "raster/core/pixel_rays.h"
@@ -23,12 +24,16 @@ struct SurfacePoints {
     std::vector<uint32_t> pixel;      // index into the image, y * width + x
     std::vector<glm::vec3> position;  // world space
     std::vector<glm::vec3> normal;    // unit geometric normal, turned towards the camera
+    // Bit l set when the point faces lights[l] (faces_light), for the lights given to
+    // gather_surface_points; empty without lights.
+    std::vector<uint8_t> facing;
 
     size_t size() const { return pixel.size(); }
     void clear() {
         pixel.clear();
         position.clear();
         normal.clear();
+        facing.clear();
     }
 };
 
@@ -38,9 +43,18 @@ void gather_surface_points(const VisibilityBuffer& visibility, const Mesh& mesh,
                            const PixelRays& rays, const TileRect& tile,
                            SurfacePoints& out);
 // The same for the pixels of a Tile (its triangle ids; pixels it does not hold have none) in
-// an image `image_width` pixels wide, through Tile::centroid where it has one.
+// an image `image_width` pixels wide, through Tile::centroid where it has one; with `lights`,
+// also which of them each point faces (SurfacePoints::facing, at most 8 lights).
+//
+// simd::kLanes pixels of a 4x4 block at a time: the rays through them (PixelRays::rays), each
+// pixel's triangle plane from a table of the tile's triangles, and the intersection, the
+// normal and the facing tests in float lanes, in gather_surface_points_reference's order of
+// operations, so the points are its points bit for bit.
 void gather_surface_points(const Tile& tile, size_t image_width, const Mesh& mesh, const PixelRays& rays,
-                           SurfacePoints& out);
+                           SurfacePoints& out, std::span<const glm::vec3> lights = {});
+// The definition, one pixel at a time (without facing bits).
+void gather_surface_points_reference(const Tile& tile, size_t image_width, const Mesh& mesh, const PixelRays& rays,
+                                     SurfacePoints& out);
 
 // True when a light at `light` is on the camera's side of the surface at `position` (the
 // normal from gather_surface_points faces the camera): only then can it light the point.

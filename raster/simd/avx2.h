@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <cstddef>
 #include <cstdint>
+#include <cstring>
 
 namespace tessera::simd {
 
@@ -75,6 +76,19 @@ inline vfloat sqrt(vfloat a) { return _mm256_sqrt_ps(a.v); }
 inline vfloat floor(vfloat a) { return _mm256_floor_ps(a.v); }
 inline vint round_to_int(vfloat a) { return _mm256_cvtps_epi32(a.v); }  // nearest even
 inline vfloat gather(const float* base, vint index) { return _mm256_i32gather_ps(base, index.v, 4); }
+
+// The bits of each lane as the other type (no conversion).
+inline vint bits_of(vfloat a) { return _mm256_castps_si256(a.v); }
+inline vfloat float_of_bits(vint a) { return _mm256_castsi256_ps(a.v); }
+// The low byte of each lane to p[0 .. kLanes) (unaligned).
+inline void store_low_bytes(uint8_t* p, vint a) {
+    const __m256i low = _mm256_shuffle_epi8(
+        a.v, _mm256_setr_epi8(0, 4, 8, 12, -1, -1, -1, -1, -1, -1, -1, -1, -1, -1, -1, -1,  //
+                              0, 4, 8, 12, -1, -1, -1, -1, -1, -1, -1, -1, -1, -1, -1, -1));
+    const uint64_t bytes = uint64_t(uint32_t(_mm256_extract_epi32(low, 0))) |
+                           uint64_t(uint32_t(_mm256_extract_epi32(low, 4))) << 32;
+    std::memcpy(p, &bytes, 8);
+}
 
 // Stores of the lanes selected by `m`: load, blend, store (the tile owns the whole line).
 inline void store_masked(float* p, vmask m, vfloat a) { select(m, a, vfloat::load(p)).store(p); }

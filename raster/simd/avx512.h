@@ -82,6 +82,12 @@ inline vfloat gather(const float* base, vint index) {
     return _mm512_mask_i32gather_ps(_mm512_setzero_ps(), kAllLanes, index.v, base, 4);
 }
 
+// The bits of each lane as the other type (no conversion).
+inline vint bits_of(vfloat a) { return _mm512_castps_si512(a.v); }
+inline vfloat float_of_bits(vint a) { return _mm512_castsi512_ps(a.v); }
+// The low byte of each lane to p[0 .. kLanes) (unaligned).
+inline void store_low_bytes(uint8_t* p, vint a) { _mm_storeu_si128(reinterpret_cast<__m128i*>(p), _mm512_cvtepi32_epi8(a.v)); }
+
 // Aligned stores of the lanes selected by `m`.
 inline void store_masked(float* p, vmask m, vfloat a) { _mm512_mask_store_ps(p, m.m, a.v); }
 inline void store_masked(uint32_t* p, vmask m, vint a) { _mm512_mask_store_epi32(p, m.m, a.v); }

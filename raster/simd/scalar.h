@@ -65,6 +65,20 @@ inline vfloat floor(vfloat a) { return std::floor(a.v); }
 inline vint round_to_int(vfloat a) { return vint(int32_t(std::nearbyint(a.v))); }
 inline vfloat gather(const float* base, vint index) { return base[index.v]; }
 
+// The bits of each lane as the other type (no conversion).
+inline vint bits_of(vfloat a) {
+    int32_t b;
+    std::memcpy(&b, &a.v, 4);
+    return vint(b);
+}
+inline vfloat float_of_bits(vint a) {
+    float f;
+    std::memcpy(&f, &a.v, 4);
+    return vfloat(f);
+}
+// The low byte of each lane to p[0 .. kLanes).
+inline void store_low_bytes(uint8_t* p, vint a) { p[0] = uint8_t(a.v); }
+
 // Stores the lanes of `a` where `m` is set (the others keep their memory contents).
 inline void store_masked(float* p, vmask m, vfloat a) { if (m.m) p[0] = a.v; }
 inline void store_masked(uint32_t* p, vmask m, vint a) { if (m.m) p[0] = uint32_t(a.v); }

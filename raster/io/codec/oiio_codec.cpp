@@ -87,7 +87,8 @@ bool format_supported(const std::string& path) {
 }
 
 std::string encode(const std::string& path, const ImageView& image, const std::string& date_time,
-                   float (*srgb_to_linear)(float), std::vector<unsigned char>& encoded) {
+                   float (*srgb_to_linear)(float), const std::string& compression,
+                   std::vector<unsigned char>& encoded) {
     return guarded([&] {
         // Encoded in memory: OpenImageIO's own file writers do not all report a failed fwrite
         // (a full disk gave a "successful" empty PNG); the caller writes the bytes atomically.
@@ -113,6 +114,7 @@ std::string encode(const std::string& path, const ImageView& image, const std::s
         OIIO::ImageSpec spec(image.width, image.height, image.channels,
                              decode_srgb ? OIIO::TypeDesc(OIIO::TypeDesc::HALF) : oiio_type(image.type));
         spec.attribute("DateTime", date_time);
+        if (!compression.empty()) spec.attribute("compression", compression);
         bool ok = out->open(path, spec) && (decode_srgb ? out->write_image(OIIO::TypeDesc::FLOAT, linear.data())
                                                         : out->write_image(oiio_type(image.type), image.pixels));
         ok = out->close() && ok;
@@ -233,7 +235,8 @@ struct CodecStream {
 namespace {
 
 std::string stream_open(const std::string& path, int width, int height, int channels, PixelType type, int tile,
-                        const std::string& date_time, CodecSink sink, CodecStream** stream) {
+                        const std::string& date_time, const std::string& compression, CodecSink sink,
+                        CodecStream** stream) {
     *stream = nullptr;
     return guarded([&] {
         *stream = new CodecStream(path, sink);
@@ -246,6 +249,7 @@ std::string stream_open(const std::string& path, int width, int height, int chan
             s.fail("format '" + std::string(s.out->format_name()) + "' cannot be written through a checked file");
         OIIO::ImageSpec spec(width, height, channels, oiio_type(type));
         spec.attribute("DateTime", date_time);
+        if (!compression.empty()) spec.attribute("compression", compression);
         s.tiled = s.out->supports("tiles");
         if (s.tiled) spec.tile_width = spec.tile_height = tile;
         // Classic TIFF addresses 4 GiB; BigTIFF only where it is needed, since older readers
