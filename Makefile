@@ -45,8 +45,8 @@ peer: build
 	bash scripts/peer.sh $(PEER_ARGS)
 
 # The release build (this machine's SIMD width) and the portable one (x86-64-v3, AVX2) write
-# the same bytes: every example scene, the raster command, the generators. Not in CI (a second
-# full build does not fit its budget).
+# the same bytes: every example scene, the raster command, the generators. CI runs it after
+# `make test` (only the tessera target is built a second time).
 same-bytes: build
 	cmake --preset portable
 	cmake --build --preset portable -j $(JOBS) --target tessera
