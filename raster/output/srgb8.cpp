@@ -4,7 +4,6 @@
 #include <array>
 #include <bit>
 #include <cmath>
-#include <cstring>
 #include <limits>
 #include <stdexcept>
 
@@ -101,8 +100,7 @@ bool encode_srgb8(const glm::vec4* pixels, size_t n, uint8_t* out) {
         const vint exponent_bits(0x7F800000);
         vmask non_finite(false);
         for (; i + simd::kLanes <= values; i += simd::kLanes) {
-            vfloat c;
-            std::memcpy(&c, in + i, sizeof c);
+            const vfloat c = vfloat::load_unaligned(in + i);
             const vmask from_low = low <= c, from_one = one <= c;  // NaN: neither
             const vfloat inside = simd::select(from_low, simd::select(from_one, below_one, c), low);
             const vint b = simd::bits_of(inside);

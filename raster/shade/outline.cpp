@@ -3,7 +3,6 @@
 #include <algorithm>
 #include <bit>
 #include <cmath>
-#include <cstring>
 
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
@@ -147,16 +146,8 @@ void OutlinePass::run_rows(const Ink& ink, int row_begin, int row_end) const {
             r.background[size_t(x) + 1] = is_background(depth[x]) ? -1 : 0;
         }
     };
-    const auto floats = [](const float* p) {
-        vfloat v;
-        std::memcpy(&v, p, sizeof v);
-        return v;
-    };
-    const auto ints = [](const int32_t* p) {
-        vint v;
-        std::memcpy(&v, p, sizeof v);
-        return v;
-    };
+    const auto floats = [](const float* p) { return vfloat::load_unaligned(p); };
+    const auto ints = [](const int32_t* p) { return vint::load_unaligned(p); };
     const int32_t toon_count = int32_t(toon_.size());
     const vfloat zero(0.0f), step_limit(kOutlineStep);
     const vint no(0), lanes = simd::lane_index();

@@ -30,6 +30,7 @@ struct vint {
     vint(__m256i x) : v(x) {}
     vint(int32_t s) : v(_mm256_set1_epi32(s)) {}
     static vint load(const int32_t* p) { return _mm256_load_si256(reinterpret_cast<const __m256i*>(p)); }
+    static vint load_unaligned(const int32_t* p) { return _mm256_loadu_si256(reinterpret_cast<const __m256i*>(p)); }
     void store(int32_t* p) const { _mm256_store_si256(reinterpret_cast<__m256i*>(p), v); }
 };
 inline vint operator+(vint a, vint b) { return _mm256_add_epi32(a.v, b.v); }
@@ -53,6 +54,7 @@ struct vfloat {
     vfloat(__m256 x) : v(x) {}
     vfloat(float s) : v(_mm256_set1_ps(s)) {}
     static vfloat load(const float* p) { return _mm256_load_ps(p); }
+    static vfloat load_unaligned(const float* p) { return _mm256_loadu_ps(p); }
     void store(float* p) const { _mm256_store_ps(p, v); }
 };
 inline vfloat operator+(vfloat a, vfloat b) { return _mm256_add_ps(a.v, b.v); }

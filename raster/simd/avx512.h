@@ -35,6 +35,7 @@ struct vint {
     vint(__m512i x) : v(x) {}
     vint(int32_t s) : v(_mm512_set1_epi32(s)) {}
     static vint load(const int32_t* p) { return _mm512_load_si512(p); }
+    static vint load_unaligned(const int32_t* p) { return _mm512_loadu_si512(p); }
     void store(int32_t* p) const { _mm512_store_si512(p, v); }
 };
 inline vint operator+(vint a, vint b) { return _mm512_add_epi32(a.v, b.v); }
@@ -57,6 +58,7 @@ struct vfloat {
     vfloat(__m512 x) : v(x) {}
     vfloat(float s) : v(_mm512_set1_ps(s)) {}
     static vfloat load(const float* p) { return _mm512_load_ps(p); }
+    static vfloat load_unaligned(const float* p) { return _mm512_loadu_ps(p); }
     void store(float* p) const { _mm512_store_ps(p, v); }
 };
 inline vfloat operator+(vfloat a, vfloat b) { return _mm512_add_ps(a.v, b.v); }

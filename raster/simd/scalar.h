@@ -26,6 +26,7 @@ struct vint {
     vint() = default;
     vint(int32_t s) : v(s) {}
     static vint load(const int32_t* p) { return vint(p[0]); }
+    static vint load_unaligned(const int32_t* p) { return vint(p[0]); }
     void store(int32_t* p) const { p[0] = v; }
 };
 // Wrapping arithmetic like the hardware lanes (computed in uint32 to avoid C++ UB).
@@ -46,6 +47,7 @@ struct vfloat {
     vfloat() = default;
     vfloat(float s) : v(s) {}
     static vfloat load(const float* p) { return vfloat(p[0]); }
+    static vfloat load_unaligned(const float* p) { return vfloat(p[0]); }
     void store(float* p) const { p[0] = v; }
 };
 inline vfloat operator+(vfloat a, vfloat b) { return a.v + b.v; }
