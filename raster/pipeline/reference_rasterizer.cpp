@@ -1,6 +1,7 @@
 #include "raster/pipeline/reference_rasterizer.h"
 
 #include <algorithm>
+#include <vector>
 
 #include "raster/core/coverage_layers.h"
 #include "raster/pipeline/clip.h"
@@ -24,8 +25,10 @@ bool covers(const WindowVertex v[3], int64_t px, int64_t py) {
     return true;
 }
 
+// offsets: the depth offsets the test compares, per pixel (and sample), 0 where empty.
 void draw(const WindowVertex& v0, const WindowVertex& v1, const WindowVertex& v2, uint32_t id,
-          const Viewport& viewport, CullMode cull, std::span<const SampleOffset> pattern, VisibilityBuffer& out) {
+          const Viewport& viewport, CullMode cull, std::span<const SampleOffset> pattern, VisibilityBuffer& out,
+          std::vector<float>& offsets) {
     const int64_t area2 = int64_t(v1.X - v0.X) * (v2.Y - v0.Y) - int64_t(v1.Y - v0.Y) * (v2.X - v0.X);
     if (area2 == 0) return;
     const bool front = area2 < 0;  // counter-clockwise in NDC (y up) is clockwise on screen
@@ -42,10 +45,11 @@ void draw(const WindowVertex& v0, const WindowVertex& v1, const WindowVertex& v2
         for (int64_t x = std::max<int64_t>(xmin, 0); x <= std::min<int64_t>(xmax, viewport.width - 1); ++x) {
             if (pattern.size() == 1) {
                 if (!covers(v, x * kSubpixels + kSubpixels / 2, y * kSubpixels + kSubpixels / 2)) continue;
-                const float z = plane.at(int(x), int(y));
+                const float z = plane.offset_at(int(x), int(y));
                 const size_t i = size_t(y) * viewport.width + size_t(x);
-                if (z < out.depth[i]) {
-                    out.depth[i] = z;
+                if (z < offsets[i]) {
+                    offsets[i] = z;
+                    out.depth[i] = window_depth(z);
                     out.triangle[i] = id;
                 }
                 continue;
@@ -55,10 +59,11 @@ void draw(const WindowVertex& v0, const WindowVertex& v1, const WindowVertex& v2
                 const int64_t px = x * kSubpixels + kSubpixels / 2 + 16 * pattern[s].x;
                 const int64_t py = y * kSubpixels + kSubpixels / 2 + 16 * pattern[s].y;
                 if (!covers(v, px, py)) continue;
-                const float z = plane.at_sample(int(x), int(y), pattern[s].x, pattern[s].y);
+                const float z = plane.offset_at_sample(int(x), int(y), pattern[s].x, pattern[s].y);
                 const size_t i = out.sample_index(int(x), int(y), int(s));
-                if (z < out.sample_depth[i]) {
-                    out.sample_depth[i] = z;
+                if (z < offsets[i]) {
+                    offsets[i] = z;
+                    out.sample_depth[i] = window_depth(z);
                     out.sample_triangle[i] = id;
                 }
             }
@@ -76,6 +81,7 @@ void reference_rasterize(const Mesh& mesh, const glm::mat4& vp, const Viewport& 
         out.sample_triangle.assign(out.triangle.size() * size_t(options.samples), kNoTriangle);
         out.sample_depth.assign(out.depth.size() * size_t(options.samples), 1.0f);
     }
+    std::vector<float> offsets(out.depth.size() * size_t(options.samples), 0.0f);
     for (size_t t = 0; t < mesh.triangle_count(); ++t) {
         if (!options.transparent.empty() && options.transparent[t]) continue;
         glm::vec4 clip[3];
@@ -99,7 +105,7 @@ void reference_rasterize(const Mesh& mesh, const glm::mat4& vp, const Viewport& 
                           : (std::copy(clip, clip + 3, polygon), 3);
         WindowVertex w[kMaxClippedVertices];
         for (int i = 0; i < n; ++i) w[i] = project_and_snap(viewport, polygon[i]);
-        for (int i = 1; i + 1 < n; ++i) draw(w[0], w[i], w[i + 1], uint32_t(t), viewport, options.cull, pattern, out);
+        for (int i = 1; i + 1 < n; ++i) draw(w[0], w[i], w[i + 1], uint32_t(t), viewport, options.cull, pattern, out, offsets);
     }
     if (options.samples == 1) return;
     // Each pixel's main surface, as the tile rasterizer reports it.

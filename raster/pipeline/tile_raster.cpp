@@ -37,9 +37,12 @@ EdgeLanes edge_lanes(int32_t f, int32_t dx, int32_t dy) {
 // An edge that is inside over the whole region: F = 0 everywhere passes "F >= 0".
 EdgeLanes accepted_edge() { return {0, 0, 0, vint(0), true}; }
 
+// The depth offsets' range in the tile buffers (triangle_setup.h: z - 1).
+const vfloat kNear(-1.0f), kFar(0.0f);
+
 // Visits the stamps with corners (sx, sy), sx0 <= sx <= sx1, sy0 <= sy <= sy1 (stamp-aligned,
-// frame coordinates): coverage from the three edges, depth from the plane. sink(index of the
-// stamp in the tile buffers, corner x, corner y, coverage, depth).
+// frame coordinates): coverage from the three edges, depth offset from the plane. sink(index
+// of the stamp in the tile buffers, corner x, corner y, coverage, depth offset).
 //
 // kBranchless: the sink also gets stamps with no coverage (its masked stores then write
 // nothing), and rows are not left early. For the few stamps of a small region this is
@@ -62,7 +65,7 @@ inline void traverse_stamps(const DepthPlane& plane, const EdgeLanes (&e)[3], in
     const vint zero(0);
     const unsigned stamps_per_row = unsigned(tile_size / kStampW);
     for (int sy = sy0; sy <= sy1; sy += kStampH) {
-        // DepthPlane::at: fma(a, x - ax, fma(b, y - ay, c)), x - ax and y - ay exact in float.
+        // DepthPlane::offset_at: fma(a, x - ax, fma(b, y - ay, c)), x - ax and y - ay exact in float.
         const vfloat z_row = simd::fma(b, vfloat(float(sy - plane.ay)) + lane_y, c);
         vint f0 = row0, f1 = row1, f2 = row2;
         float fx = float(sx0 - plane.ax);
@@ -72,7 +75,7 @@ inline void traverse_stamps(const DepthPlane& plane, const EdgeLanes (&e)[3], in
             const vmask covered = (f0 | f1 | f2) >= zero;
             if (kBranchless || simd::any(covered)) {
                 vfloat z = simd::fma(a, vfloat(fx) + lane_x, z_row);
-                z = simd::min(simd::max(z, vfloat(0.0f)), vfloat(1.0f));
+                z = simd::min(simd::max(z, kNear), kFar);
                 sink(index, sx, sy, covered, z);
             } else if ((exit0 && !simd::any(f0 >= zero)) || (exit1 && !simd::any(f1 >= zero)) ||
                        (exit2 && !simd::any(f2 >= zero))) {
@@ -103,7 +106,7 @@ inline void fill_stamps(const DepthPlane& plane, int sx0, int sy0, int sx1, int 
         size_t index = (unsigned(sy - tile.y0) / kStampH * stamps_per_row + unsigned(sx0 - tile.x0) / kStampW) * kLanes;
         for (int sx = sx0; sx <= sx1; sx += kStampW, index += kLanes, fx += float(kStampW)) {
             vfloat z = simd::fma(a, vfloat(fx) + lane_x, z_row);
-            z = simd::min(simd::max(z, vfloat(0.0f)), vfloat(1.0f));
+            z = simd::min(simd::max(z, kNear), kFar);
             sink(index, sx, sy, all, z);
         }
     }
@@ -135,8 +138,9 @@ struct SampleLanes {
 };
 
 // traverse_stamps for several samples per pixel: coverage per sample from the edge values
-// moved by the sample's offsets, depth from the plane at the sample. sink(index of the stamp,
-// corner x, corner y, sample, coverage, depth) per sample of a stamp with any coverage.
+// moved by the sample's offsets, depth offset from the plane at the sample. sink(index of the
+// stamp, corner x, corner y, sample, coverage, depth offset) per sample of a stamp with any
+// coverage.
 template <bool kBranchless, class Sink>
 inline void traverse_sample_stamps(const DepthPlane& plane, const EdgeLanes (&e)[3], const SampleLanes& samples,
                                    int sx0, int sy0, int sx1, int sy1, const TileRect& tile, int tile_size,
@@ -175,7 +179,7 @@ inline void traverse_sample_stamps(const DepthPlane& plane, const EdgeLanes (&e)
                 for (int s = 0; s < n; ++s) {
                     // DepthPlane::at_sample: x - ax + ox, y - ay + oy, exact in float.
                     vfloat z = simd::fma(a, x + vfloat(samples.ox[s]), simd::fma(b, y_row + vfloat(samples.oy[s]), c));
-                    z = simd::min(simd::max(z, vfloat(0.0f)), vfloat(1.0f));
+                    z = simd::min(simd::max(z, kNear), kFar);
                     sink(index, sx, sy, s, covered[s], z);
                 }
             } else if ((exit0 && !simd::any((f0 + hi0) >= zero)) || (exit1 && !simd::any((f1 + hi1) >= zero)) ||
@@ -209,7 +213,7 @@ inline void fill_sample_stamps(const DepthPlane& plane, const SampleLanes& sampl
             const vfloat x = vfloat(fx) + lane_x;
             for (int s = 0; s < samples.count; ++s) {
                 vfloat z = simd::fma(a, x + vfloat(samples.ox[s]), simd::fma(b, y_row + vfloat(samples.oy[s]), c));
-                z = simd::min(simd::max(z, vfloat(0.0f)), vfloat(1.0f));
+                z = simd::min(simd::max(z, kNear), kFar);
                 sink(index, sx, sy, s, all, z);
             }
         }
@@ -289,10 +293,9 @@ void TileBuffers::clear(int tile_size, int sample_count) {
     const size_t n = size_t(tile_size) * size_t(tile_size) * size_t(sample_count);
     depth.resize(n);
     triangle.resize(n);
-    const vfloat one(1.0f);
     const vint none(int32_t(0xFFFFFFFFu));
     for (size_t i = 0; i < n; i += kLanes) {
-        one.store(&depth[i]);
+        kFar.store(&depth[i]);
         none.store(reinterpret_cast<int32_t*>(&triangle[i]));
     }
 }
@@ -301,7 +304,9 @@ namespace {
 
 // One array of a tile (stamp layout, `size` pixels a side) to row-major `out`, kStampH rows
 // at a time through `rows_buffer` (kStampH x size values). Every group of stamps is reset to
-// `empty` as it is read (the data is in L1 then: cheaper than a separate clear pass).
+// `empty` as it is read (the data is in L1 then: cheaper than a separate clear pass). With
+// kDepth the values are depth offsets and leave as window depth (window_depth()).
+template <bool kDepth>
 void flush_rows(uint32_t* tile, int size, int width, int height, uint32_t* out, size_t stride,
                 uint32_t empty, bool stream, uint32_t* rows_buffer) {
     const size_t stamps_per_row = size_t(size / kStampW);
@@ -313,6 +318,11 @@ void flush_rows(uint32_t* tile, int size, int width, int height, uint32_t* out, 
             int32_t* group = reinterpret_cast<int32_t*>(stamps + size_t(x / kStampW) * kLanes);
             simd::store_stamp_rows(reinterpret_cast<uint32_t*>(group), rows_buffer + x, size_t(size), kStampH);
             for (int s = 0; s < kStampH; ++s) cleared.store(group + s * kLanes);
+        }
+        if constexpr (kDepth) {
+            float* rows = reinterpret_cast<float*>(rows_buffer);
+            for (size_t i = 0; i < size_t(kStampH) * size_t(size); i += kLanes)
+                (vfloat::load(rows + i) + vfloat(1.0f)).store(rows + i);  // window_depth()
         }
         const int rows = std::min(kStampH, height - y);
         for (int r = 0; r < rows; ++r) {
@@ -338,10 +348,10 @@ void TileBuffers::flush(int width, int height, uint32_t* triangle_out, float* de
     // One array after the other: interleaving the two doubles the write streams in flight,
     // which measured 2x slower than two sequential passes.
     if (triangle_out)
-        flush_rows(triangle.data(), size, width, height, triangle_out, stride, kNoTriangle, stream, rows.data());
-    flush_rows(reinterpret_cast<uint32_t*>(depth.data()), size, width, height,
-               reinterpret_cast<uint32_t*>(depth_out), stride, std::bit_cast<uint32_t>(1.0f), stream,
-               rows.data());
+        flush_rows<false>(triangle.data(), size, width, height, triangle_out, stride, kNoTriangle, stream, rows.data());
+    flush_rows<true>(reinterpret_cast<uint32_t*>(depth.data()), size, width, height,
+                     reinterpret_cast<uint32_t*>(depth_out), stride, std::bit_cast<uint32_t>(0.0f), stream,
+                     rows.data());
     if (stream) simd::stream_fence();
     // A partial tile leaves stamp rows below `height` uncopied and uncleared (and traversal
     // may have covered lanes past the viewport's edge): clear it all.
@@ -393,7 +403,7 @@ size_t rasterize_tested(const TriangleSetup& t, const TileRect& tile, const floa
     size_t n = 0;
     const int tile_size = 1 << 8;  // any stamp-aligned width works: indices are unused here
     traverse<false>(t, tile, tile_size, nullptr, [&](size_t, int sx, int sy, vmask covered, vfloat z) {
-        z.store(z_lanes);
+        (z + vfloat(1.0f)).store(z_lanes);  // window_depth(), as `depth` holds
         for (uint32_t bits = simd::bits(covered); bits; bits &= bits - 1) {
             const int lane = std::countr_zero(bits);
             const int x = sx + lane % kStampW, y = sy + lane / kStampW;

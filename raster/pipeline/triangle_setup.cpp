@@ -23,31 +23,31 @@ DepthPlane DepthPlane::from(const WindowVertex& v0, const WindowVertex& v1, cons
     p.ax = int16_t(v0.X >> kSubpixelBits);  // the pixel that holds vertex 0 (floor)
     p.ay = int16_t(v0.Y >> kSubpixelBits);
     if (det == 0.0) {  // never traversed (zero area), but keep the plane finite
-        p.c = v0.z;
+        p.c = float(double(v0.z) - 1.0);
         return p;
     }
     const double inv_det = 1.0 / det;
     const double a = (z1 * y2 - z2 * y1) * inv_det;
     const double b = (x1 * z2 - x2 * z1) * inv_det;
-    // Depth at the anchor pixel's centre.
+    // Depth offset at the anchor pixel's centre, rounded once: z_0 - 1 is exact in double.
     const double cx = (double(p.ax) + 0.5) - double(v0.X) / kSubpixels;
     const double cy = (double(p.ay) + 0.5) - double(v0.Y) / kSubpixels;
     p.a = float(a);
     p.b = float(b);
-    p.c = float(double(v0.z) + a * cx + b * cy);
+    p.c = float((double(v0.z) - 1.0) + a * cx + b * cy);
     return p;
 }
 
-float DepthPlane::at(int x, int y) const {
+float DepthPlane::offset_at(int x, int y) const {
     const float z = std::fma(a, float(x - ax), std::fma(b, float(y - ay), c));
-    return std::min(std::max(z, 0.0f), 1.0f);
+    return std::min(std::max(z, -1.0f), 0.0f);
 }
 
-float DepthPlane::at_sample(int x, int y, int ox, int oy) const {
+float DepthPlane::offset_at_sample(int x, int y, int ox, int oy) const {
     const float fx = float(x - ax) + float(ox) * (1.0f / 16.0f);
     const float fy = float(y - ay) + float(oy) * (1.0f / 16.0f);
     const float z = std::fma(a, fx, std::fma(b, fy, c));
-    return std::min(std::max(z, 0.0f), 1.0f);
+    return std::min(std::max(z, -1.0f), 0.0f);
 }
 
 SetupResult setup_triangle(const WindowVertex& v0, const WindowVertex& v1_in,

@@ -22,8 +22,18 @@ struct WindowVertex {
 // vertex stage (same float operations, round to nearest even).
 WindowVertex project_and_snap(const Viewport& viewport, const glm::vec4& clip);
 
-// Window depth as a plane over pixel centres, anchored at pixel (ax, ay):
-//   z(x, y) = clamp(fma(a, x - ax, fma(b, y - ay, c)), 0, 1)
+// Window depth z as the rasterizer's tile buffers hold and compare it: the depth offset
+// z - 1, in [-1, 0]. Perspective crowds window depth against 1 (z = 1 - n/d for the far plane
+// at infinity, n the near plane, d the distance), where floats are 2^-24 = 6e-8 apart: with
+// n = 0.1, two surfaces 10 units away whose depths differ by 1e-8 store the same z, and the
+// depth test keeps whichever came first. Floats are dense near 0, so z - 1 = -n/d keeps 24
+// bits of n/d at every distance: the reversed-Z argument (Lapidous & Jiao, "Optimal depth
+// buffer for low-cost graphics hardware", 1999), in the form that keeps the test LESS and
+// the clear value simple (0: the far plane).
+inline float window_depth(float offset) { return offset + 1.0f; }
+
+// The depth offset as a plane over pixel centres, anchored at pixel (ax, ay):
+//   offset(x, y) = clamp(fma(a, x - ax, fma(b, y - ay, c)), -1, 0)
 // with x - ax, y - ay converted to float exactly. The plane is set up on the snapped
 // positions (D3D11.3 §3.4.1) in double precision; every path (SIMD tiles, scalar reference)
 // evaluates this same expression, so depths agree to the bit.
@@ -32,10 +42,13 @@ struct DepthPlane {
     int16_t ax = 0, ay = 0;  // |window coordinates| < 2^14 (fixed_point.h)
 
     static DepthPlane from(const WindowVertex& v0, const WindowVertex& v1, const WindowVertex& v2);
-    float at(int x, int y) const;
+    float offset_at(int x, int y) const;
     // At the sample (ox, oy) / 16 pixels from the centre of pixel (x, y) (sample_pattern.h):
     // the same expression with x - ax + ox / 16 and y - ay + oy / 16, still exact in float.
-    float at_sample(int x, int y, int ox, int oy) const;
+    float offset_at_sample(int x, int y, int ox, int oy) const;
+    // Window depth: window_depth() of the above.
+    float at(int x, int y) const { return window_depth(offset_at(x, y)); }
+    float at_sample(int x, int y, int ox, int oy) const { return window_depth(offset_at_sample(x, y, ox, oy)); }
 };
 
 enum class CullMode { none, back, front };  // front faces are counter-clockwise in NDC (GL)
