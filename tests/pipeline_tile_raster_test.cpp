@@ -1,5 +1,5 @@
 // The tile rasterizer (raster/pipeline/tile_raster.h) against a brute-force evaluation of the
-// setup's edge functions (int64, every pixel) and DepthPlane::offset_at: coverage, depth and ids of
+// setup's edge functions (int64, every pixel) and depth_offset(): coverage, depth and ids of
 // each path (tiny and small triangles stepped in int32 lanes, big ones by 16x16 blocks with
 // trivial accept and reject, the depth-only and the depth-tested fragment variants) for
 // triangles of every size class, tile sizes 16 .. 256, partial tiles at the viewport's borders
@@ -61,7 +61,7 @@ bool meets(const TriangleSetup& t, const TileRect& r) {
 
 // `t` rasterized alone into cleared buffers: at every pixel of the tile, written exactly where
 // the edge functions cover it and its depth offset is LESS than the cleared 0 (the far plane),
-// with t.depth.offset_at(x, y) to the bit and the triangle's id (ids untouched for a depth-only
+// with depth_offset(t, x, y) to the bit and the triangle's id (ids untouched for a depth-only
 // render). Outside the
 // setup's box nothing may be covered (the setup tests prove it of the edge functions), so
 // only untouched pixels are checked there.
@@ -70,7 +70,7 @@ void expect_alone(const TriangleSetup& t, const TileRect& r, const TileBuffers& 
         for (int x = r.x0; x < r.x1; ++x) {
             const bool in_box = x >= t.minx && x <= t.maxx && y >= t.miny && y <= t.maxy;
             const bool in = in_box && setup_covers(t, x, y);
-            const float z = in ? t.depth.offset_at(x, y) : 0.0f;
+            const float z = in ? depth_offset(t, x, y) : 0.0f;
             const bool written = in && z < 0.0f;
             const size_t i = b.index(x - r.x0, y - r.y0);
             const float depth = written ? z : 0.0f;
@@ -199,7 +199,7 @@ void brute_force_frame(const std::vector<TriangleSetup>& setups, int w, int h, s
             for (int x = t.minx; x <= t.maxx; ++x) {
                 const size_t i = size_t(y) * w + x;
                 if (!setup_covers(t, x, y)) continue;
-                const float z = t.depth.offset_at(x, y);
+                const float z = depth_offset(t, x, y);
                 if (z < offset[i]) offset[i] = z, ids[i] = t.triangle;
             }
     depth.resize(offset.size());
@@ -209,7 +209,7 @@ void brute_force_frame(const std::vector<TriangleSetup>& setups, int w, int h, s
 // Overlapping triangles through the tile buffers, flushed to a row-major frame (streamed where
 // the rows are aligned), against the brute-force frame: the depth test and the flush. The
 // third frame has only triangles at depth 0.5 (and a few at 1.0: depth offsets -0.5 and 0),
-// which tie wherever they overlap: the first one drawn keeps the pixel.
+// which tie wherever they overlap, edge steps aside: the first one drawn keeps the pixel.
 TEST(PipelineTileRaster, DepthTestedFramesMatchBruteForce) {
     Rng rng(16303);
     for (const auto& [w, h, flat] : {std::tuple{333, 259, false}, std::tuple{320, 240, false},  // 320: rows on cache lines
@@ -320,8 +320,57 @@ TEST(PipelineTileRaster, KeepsTheNearerByExactArithmetic) {
     EXPECT_GT(close_calls, 1000u);
 }
 
+// A fold: two triangles on the same side of a shared edge that runs exactly through sample
+// positions (vertical, horizontal, diagonal; through pixel centres, and through sample 3 of
+// the 4x pattern at (2, 6) / 16), one deeper inside than the other. Both cover the samples on
+// the edge (top-left rule) with exactly the same depth; there the one that is nearer just
+// inside the edge, where coverage decided, must be kept, whichever was drawn first. (On a
+// right or bottom edge neither covers them.)
+TEST(PipelineTileRaster, FoldOverAnEdgeThroughSamplesKeepsTheNearerInside) {
+    const Viewport viewport(128, 128);
+    for (int samples : {1, 4}) {
+        // Sample 0 of one sample at the centre; sample 3 of four at (2, 6) / 16 pixels from it.
+        const int ox = samples == 1 ? 0 : 32, oy = samples == 1 ? 0 : 96, s = samples == 1 ? 0 : 3;
+        const auto at = [&](int x, int y, float z) { return WindowVertex{x * 256 + 128 + ox, y * 256 + 128 + oy, z}; };
+        // Edge a -> b, then the third vertices of the nearer and the deeper triangle.
+        const WindowVertex folds[][4] = {
+            {at(20, 20, 0.5f), at(20, 90, 0.6f), at(70, 55, 0.55f), at(45, 55, 0.7f)},   // vertical, inside right
+            {at(90, 20, 0.5f), at(90, 90, 0.6f), at(40, 55, 0.55f), at(65, 55, 0.7f)},   // vertical, inside left
+            {at(20, 20, 0.5f), at(90, 20, 0.6f), at(55, 70, 0.55f), at(55, 45, 0.7f)},   // horizontal, inside below
+            {at(20, 90, 0.5f), at(90, 90, 0.6f), at(55, 40, 0.55f), at(55, 65, 0.7f)},   // horizontal, inside above
+            {at(20, 20, 0.5f), at(90, 90, 0.6f), at(90, 30, 0.55f), at(70, 40, 0.72f)},  // diagonal
+            {at(20, 20, 0.5f), at(90, 90, 0.6f), at(30, 90, 0.55f), at(40, 70, 0.72f)},
+        };
+        int on_edge = 0;
+        for (const auto& f : folds)
+            for (bool nearer_first : {true, false}) {
+                TriangleSetup nearer, deeper;
+                ASSERT_EQ(setup_triangle(f[0], f[1], f[2], CullMode::none, viewport, nearer, samples), SetupResult::drawn);
+                ASSERT_EQ(setup_triangle(f[0], f[1], f[3], CullMode::none, viewport, deeper, samples), SetupResult::drawn);
+                nearer.triangle = 1;
+                deeper.triangle = 2;
+                TileBuffers buffers;
+                buffers.clear(128, samples);
+                const TileRect r{0, 0, 128, 128};
+                for (const TriangleSetup* t : nearer_first ? std::array{&nearer, &deeper} : std::array{&deeper, &nearer})
+                    rasterize_opaque(*t, r, buffers);
+                // Samples on the edge line: (x, y) on a -> b, with a the first pixel.
+                const uint32_t expected = test::is_top_or_left(f[0], f[1], f[2]) ? 1u : kNoTriangle;
+                const int dx = (f[1].X - f[0].X) / 256, dy = (f[1].Y - f[0].Y) / 256, n = std::max(std::abs(dx), std::abs(dy));
+                for (int k = 1; k < n; ++k) {
+                    const int x = f[0].X / 256 + k * (dx / n), y = f[0].Y / 256 + k * (dy / n);
+                    const size_t i = size_t(s) * buffers.plane() + buffers.index(x, y);
+                    ASSERT_EQ(buffers.triangle[i], expected) << "fold " << (&f - folds) << ", sample at pixel (" << x << ", "
+                                                       << y << "), nearer drawn " << (nearer_first ? "first" : "second");
+                    on_edge += expected == 1u;
+                }
+            }
+        EXPECT_GT(on_edge, 400);
+    }
+}
+
 // rasterize_tested: exactly the covered pixels whose window depth is LESS than a given
-// row-major window depth buffer (ties fail), with window_depth(t.depth.offset_at(x, y)) to the
+// row-major window depth buffer (ties fail), with window_depth(depth_offset(t, x, y)) to the
 // bit (the depth buffer is const).
 TEST(PipelineTileRaster, TestedFragmentsAreTheCoveredPixelsInFront) {
     const int w = 301, h = 203;
@@ -346,7 +395,7 @@ TEST(PipelineTileRaster, TestedFragmentsAreTheCoveredPixelsInFront) {
                 const int y0 = std::max<int>(r.y0, t.miny), y1 = std::min<int>(r.y1 - 1, t.maxy);
                 for (int y = y0; y <= y1; ++y)
                     for (int x = x0; x <= x1; ++x) {
-                        const float z = setup_covers(t, x, y) ? window_depth(t.depth.offset_at(x, y)) : rng.unit();
+                        const float z = setup_covers(t, x, y) ? window_depth(depth_offset(t, x, y)) : rng.unit();
                         float& d = depth[size_t(y - r.y0) * stride + size_t(x - r.x0)];
                         switch (rng.bits() % 6) {
                             case 0: d = z; break;
@@ -362,7 +411,7 @@ TEST(PipelineTileRaster, TestedFragmentsAreTheCoveredPixelsInFront) {
                 for (int y = y0; y <= y1; ++y)
                     for (int x = x0; x <= x1; ++x) {
                         if (!setup_covers(t, x, y)) continue;
-                        const float z = window_depth(t.depth.offset_at(x, y));
+                        const float z = window_depth(depth_offset(t, x, y));
                         const float d = depth[size_t(y - r.y0) * stride + size_t(x - r.x0)];
                         ties += z == d;
                         if (z < d) expected.emplace_back(y, x, std::bit_cast<uint32_t>(z));

@@ -1,6 +1,7 @@
 #include "raster/pipeline/reference_rasterizer.h"
 
 #include <algorithm>
+#include <cmath>
 #include <vector>
 
 #include "raster/core/coverage_layers.h"
@@ -13,16 +14,26 @@ namespace tessera::pipeline {
 
 namespace {
 
-// The D3D coverage rule evaluated directly at pixel centre (px, py) in sub-pixels.
-bool covers(const WindowVertex v[3], int64_t px, int64_t py) {
+// The D3D coverage rule evaluated directly at pixel centre (px, py) in sub-pixels; `e` gets
+// the three edge functions.
+bool covers(const WindowVertex v[3], int64_t px, int64_t py, int64_t e[3]) {
     for (int i = 0; i < 3; ++i) {
         const WindowVertex& a = v[i];
         const WindowVertex& b = v[(i + 1) % 3];
         const int64_t dX = b.X - a.X, dY = b.Y - a.Y;
-        const int64_t e = dX * (py - a.Y) - dY * (px - a.X);
-        if (e < 0 || (e == 0 && !is_top_left(int32_t(dX), int32_t(dY)))) return false;
+        e[i] = dX * (py - a.Y) - dY * (px - a.X);
+        if (e[i] < 0 || (e[i] == 0 && !is_top_left(int32_t(dX), int32_t(dY)))) return false;
     }
     return true;
+}
+
+// The depth offset (triangle_setup.h) at the covered sample (fx, fy) pixels from the plane's
+// anchor: the plane, plus the edge step of each edge the sample lies exactly on (e == 0).
+float offset_at(const DepthPlane& plane, const WindowVertex v[3], float fx, float fy, const int64_t e[3]) {
+    float z = std::fma(plane.a, fx, std::fma(plane.b, fy, plane.c));
+    for (int i = 0; i < 3; ++i)
+        if (e[i] == 0) z = z + plane.edge_step(v[(i + 1) % 3].X - v[i].X, v[(i + 1) % 3].Y - v[i].Y);
+    return std::min(std::max(z, -1.0f), 0.0f);
 }
 
 // offsets: the depth offsets the test compares, per pixel (and sample), 0 where empty.
@@ -43,9 +54,10 @@ void draw(const WindowVertex& v0, const WindowVertex& v1, const WindowVertex& v2
     const int64_t ymax = std::max({v0.Y, v1.Y, v2.Y}) / kSubpixels + 1;
     for (int64_t y = std::max<int64_t>(ymin, 0); y <= std::min<int64_t>(ymax, viewport.height - 1); ++y)
         for (int64_t x = std::max<int64_t>(xmin, 0); x <= std::min<int64_t>(xmax, viewport.width - 1); ++x) {
+            int64_t e[3];
             if (pattern.size() == 1) {
-                if (!covers(v, x * kSubpixels + kSubpixels / 2, y * kSubpixels + kSubpixels / 2)) continue;
-                const float z = plane.offset_at(int(x), int(y));
+                if (!covers(v, x * kSubpixels + kSubpixels / 2, y * kSubpixels + kSubpixels / 2, e)) continue;
+                const float z = offset_at(plane, v, float(int(x) - plane.ax), float(int(y) - plane.ay), e);
                 const size_t i = size_t(y) * viewport.width + size_t(x);
                 if (z < offsets[i]) {
                     offsets[i] = z;
@@ -58,8 +70,10 @@ void draw(const WindowVertex& v0, const WindowVertex& v1, const WindowVertex& v2
             for (size_t s = 0; s < pattern.size(); ++s) {
                 const int64_t px = x * kSubpixels + kSubpixels / 2 + 16 * pattern[s].x;
                 const int64_t py = y * kSubpixels + kSubpixels / 2 + 16 * pattern[s].y;
-                if (!covers(v, px, py)) continue;
-                const float z = plane.offset_at_sample(int(x), int(y), pattern[s].x, pattern[s].y);
+                if (!covers(v, px, py, e)) continue;
+                const float fx = float(int(x) - plane.ax) + float(pattern[s].x) * (1.0f / 16.0f);
+                const float fy = float(int(y) - plane.ay) + float(pattern[s].y) * (1.0f / 16.0f);
+                const float z = offset_at(plane, v, fx, fy, e);
                 const size_t i = out.sample_index(int(x), int(y), int(s));
                 if (z < offsets[i]) {
                     offsets[i] = z;

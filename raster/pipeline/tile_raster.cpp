@@ -21,6 +21,9 @@ using simd::vmask;
 constexpr int kBlock = 16;  // block edge for big triangles (int32-exact up to 64, fixed_point.h)
 constexpr int kTinyExtent = 32;  // pixels: a small triangle's region under this is visited branch-free
 
+// A value the reduced edge function F never takes (|F| < 2^25 in int32 lanes, fixed_point.h).
+constexpr int32_t kNever = INT32_MIN;
+
 // One edge function in the lanes of a stamp: F at the stamp's corner pixel (scalar), the lane
 // offsets F(corner + lane) - F(corner), and the steps between stamps.
 struct EdgeLanes {
@@ -28,6 +31,10 @@ struct EdgeLanes {
     int32_t step_x, step_y;  // per stamp
     vint offset;
     bool accepted;  // inside over the whole region, at every sample
+    // Single-sampled: 0 when pixel centres can lie exactly on the edge (holds_centres()), where
+    // F = 0 and the depth takes the edge's step (DepthPlane::edge_step()); kNever otherwise.
+    int32_t on_edge = kNever;
+    float step = 0.0f;
 };
 
 EdgeLanes edge_lanes(int32_t f, int32_t dx, int32_t dy) {
@@ -41,7 +48,8 @@ EdgeLanes accepted_edge() { return {0, 0, 0, vint(0), true}; }
 const vfloat kNear(-1.0f), kFar(0.0f);
 
 // Visits the stamps with corners (sx, sy), sx0 <= sx <= sx1, sy0 <= sy <= sy1 (stamp-aligned,
-// frame coordinates): coverage from the three edges, depth offset from the plane. sink(index
+// frame coordinates): coverage from the three edges, depth offset from the plane (with
+// kOnEdge, plus the edge's step where a lane lies exactly on it: depth_offset()). sink(index
 // of the stamp in the tile buffers, corner x, corner y, coverage, depth offset).
 //
 // kBranchless: the sink also gets stamps with no coverage (its masked stores then write
@@ -49,7 +57,7 @@ const vfloat kNear(-1.0f), kFar(0.0f);
 // faster than predicting "any lane covered" and the row exits, which mispredict often
 // (sphere grid at 1080p, 1 thread, CPU time per frame: 16k triangles 3.4 -> 2.4 ms, 100k
 // 8.2 -> 5.9 ms; regions up to 16 pixels gave 3.2 and 6.0 ms, up to 64 the same as 32).
-template <bool kBranchless, class Sink>
+template <bool kBranchless, bool kOnEdge, class Sink>
 inline void traverse_stamps(const DepthPlane& plane, const EdgeLanes (&e)[3], int sx0, int sy0, int sx1,
                             int sy1, const TileRect& tile, int tile_size, Sink&& sink) {
     const vfloat lane_x = simd::to_float(simd::stamp_x());
@@ -75,6 +83,11 @@ inline void traverse_stamps(const DepthPlane& plane, const EdgeLanes (&e)[3], in
             const vmask covered = (f0 | f1 | f2) >= zero;
             if (kBranchless || simd::any(covered)) {
                 vfloat z = simd::fma(a, vfloat(fx) + lane_x, z_row);
+                if constexpr (kOnEdge) {
+                    z = simd::select(f0 == vint(e[0].on_edge), z + vfloat(e[0].step), z);
+                    z = simd::select(f1 == vint(e[1].on_edge), z + vfloat(e[1].step), z);
+                    z = simd::select(f2 == vint(e[2].on_edge), z + vfloat(e[2].step), z);
+                }
                 z = simd::min(simd::max(z, kNear), kFar);
                 sink(index, sx, sy, covered, z);
             } else if ((exit0 && !simd::any(f0 >= zero)) || (exit1 && !simd::any(f1 >= zero)) ||
@@ -120,6 +133,12 @@ struct SampleLanes {
     int32_t offset[3][kMaxSamples];
     int32_t lo[3], hi[3];
     float ox[kMaxSamples], oy[kMaxSamples];
+    // Per edge and sample: the F (before the sample's offset) at which the sample lies exactly
+    // on the edge, -offset, when such samples exist (holds_sample()), else kNever; and the
+    // edge's depth step. on_edge_any: whether any edge has any.
+    int32_t on_edge[3][kMaxSamples];
+    float step[3];
+    bool on_edge_any = false, edge_holds[3] = {false, false, false};
 
     SampleLanes(const TriangleSetup& t, std::span<const SampleOffset> pattern) : count(int(pattern.size())) {
         for (int i = 0; i < 3; ++i) {
@@ -128,7 +147,12 @@ struct SampleLanes {
                 offset[i][s] = sample_offset(t, i, pattern[s].x, pattern[s].y);
                 lo[i] = std::min(lo[i], offset[i][s]);
                 hi[i] = std::max(hi[i], offset[i][s]);
+                const bool holds = holds_sample(t, i, pattern[s].x, pattern[s].y);
+                on_edge[i][s] = holds ? -offset[i][s] : kNever;
+                edge_holds[i] = edge_holds[i] || holds;
             }
+            step[i] = edge_holds[i] ? t.depth.edge_step(t.dx[i], t.dy[i]) : 0.0f;
+            on_edge_any = on_edge_any || edge_holds[i];
         }
         for (int s = 0; s < count; ++s) {
             ox[s] = float(pattern[s].x) * (1.0f / 16.0f);
@@ -138,10 +162,11 @@ struct SampleLanes {
 };
 
 // traverse_stamps for several samples per pixel: coverage per sample from the edge values
-// moved by the sample's offsets, depth offset from the plane at the sample. sink(index of the
-// stamp, corner x, corner y, sample, coverage, depth offset) per sample of a stamp with any
-// coverage.
-template <bool kBranchless, class Sink>
+// moved by the sample's offsets, depth offset from the plane at the sample (with kOnEdge, plus
+// the edge's step where the sample lies exactly on it: depth_offset_at_sample()). sink(index
+// of the stamp, corner x, corner y, sample, coverage, depth offset) per sample of a stamp with
+// any coverage.
+template <bool kBranchless, bool kOnEdge, class Sink>
 inline void traverse_sample_stamps(const DepthPlane& plane, const EdgeLanes (&e)[3], const SampleLanes& samples,
                                    int sx0, int sy0, int sx1, int sy1, const TileRect& tile, int tile_size,
                                    Sink&& sink) {
@@ -179,6 +204,12 @@ inline void traverse_sample_stamps(const DepthPlane& plane, const EdgeLanes (&e)
                 for (int s = 0; s < n; ++s) {
                     // DepthPlane::at_sample: x - ax + ox, y - ay + oy, exact in float.
                     vfloat z = simd::fma(a, x + vfloat(samples.ox[s]), simd::fma(b, y_row + vfloat(samples.oy[s]), c));
+                    if constexpr (kOnEdge) {
+                        // An accepted edge is never one with samples on it (traverse()).
+                        z = simd::select(f0 == vint(samples.on_edge[0][s]), z + vfloat(samples.step[0]), z);
+                        z = simd::select(f1 == vint(samples.on_edge[1][s]), z + vfloat(samples.step[1]), z);
+                        z = simd::select(f2 == vint(samples.on_edge[2][s]), z + vfloat(samples.step[2]), z);
+                    }
                     z = simd::min(simd::max(z, kNear), kFar);
                     sink(index, sx, sy, s, covered[s], z);
                 }
@@ -234,11 +265,29 @@ inline void traverse(const TriangleSetup& t, const TileRect& tile, int tile_size
     const int y0 = std::max<int>(t.miny, tile.y0), y1 = std::min<int>(t.maxy, tile.y1 - 1);
     if (x0 > x1 || y0 > y1) return;
     const int sx0 = x0 & ~(kStampW - 1), sy0 = y0 & ~(kStampH - 1);
-    const auto partial = [&]<bool kBranchless>(const EdgeLanes (&lanes)[3], int px0, int py0, int px1, int py1) {
-        if constexpr (kMulti)
-            traverse_sample_stamps<kBranchless>(t.depth, lanes, *samples, px0, py0, px1, py1, tile, tile_size, sink);
-        else
-            traverse_stamps<kBranchless>(t.depth, lanes, px0, py0, px1, py1, tile, tile_size, sink);
+    // Edges that may hold samples exactly (holds_centres(), holds_sample()): their lanes read
+    // the depth step there, and a block is accepted whole only where F > 0 on them.
+    bool holds[3];
+    for (int i = 0; i < 3; ++i) holds[i] = kMulti ? samples->edge_holds[i] : holds_centres(t, i);
+    const bool on_edge = holds[0] || holds[1] || holds[2];
+    const auto partial = [&]<bool kBranchless>(EdgeLanes (&lanes)[3], int px0, int py0, int px1, int py1) {
+        if constexpr (kMulti) {
+            if (on_edge)
+                traverse_sample_stamps<kBranchless, true>(t.depth, lanes, *samples, px0, py0, px1, py1, tile,
+                                                          tile_size, sink);
+            else
+                traverse_sample_stamps<kBranchless, false>(t.depth, lanes, *samples, px0, py0, px1, py1, tile,
+                                                           tile_size, sink);
+        } else if (on_edge) {
+            for (int i = 0; i < 3; ++i)
+                if (holds[i] && !lanes[i].accepted) {
+                    lanes[i].on_edge = 0;
+                    lanes[i].step = t.depth.edge_step(t.dx[i], t.dy[i]);
+                }
+            traverse_stamps<kBranchless, true>(t.depth, lanes, px0, py0, px1, py1, tile, tile_size, sink);
+        } else {
+            traverse_stamps<kBranchless, false>(t.depth, lanes, px0, py0, px1, py1, tile, tile_size, sink);
+        }
     };
     if (t.small) {
         // Small triangle: int32 is exact anywhere within a few pixels of its box, F at
@@ -270,7 +319,7 @@ inline void traverse(const TriangleSetup& t, const TileRect& tile, int tile_size
                 const int64_t hi = f + std::max<int64_t>(0, -dy) * kSpan + std::max<int64_t>(0, dx) * kSpan +
                                    (kMulti ? samples->hi[i] : 0);
                 if (hi < 0) rejected = true;
-                else if (lo >= 0) lanes[i] = accepted_edge(), full[i] = true;
+                else if (lo > (holds[i] ? 0 : -1)) lanes[i] = accepted_edge(), full[i] = true;
                 else lanes[i] = edge_lanes(int32_t(edge_at(t, i, px0, py0)), t.dx[i], t.dy[i]);
             }
             if (rejected) continue;

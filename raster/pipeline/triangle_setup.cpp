@@ -50,6 +50,46 @@ float DepthPlane::offset_at_sample(int x, int y, int ox, int oy) const {
     return std::min(std::max(z, -1.0f), 0.0f);
 }
 
+float DepthPlane::edge_step(int32_t dX, int32_t dY) const {
+    // |dX|, |dY| <= 2^23: the squares and their sum are exact in double, and sqrt rounds
+    // correctly, so every build computes the same step.
+    const double length = std::sqrt(double(dX) * double(dX) + double(dY) * double(dY));
+    return float(0x1p-10 * (double(a) * -double(dY) + double(b) * double(dX)) / length);
+}
+
+namespace {
+
+// F_i at pixel (x, y), from the setup's value at (minx, miny); exact in int64.
+int64_t edge_at(const TriangleSetup& t, int i, int x, int y) {
+    return t.f[i] + int64_t(t.dx[i]) * (y - t.miny) - int64_t(t.dy[i]) * (x - t.minx);
+}
+
+}  // namespace
+
+bool holds_centres(const TriangleSetup& t, int i) { return t.residue[i] == 0 && is_top_left(t.dx[i], t.dy[i]); }
+
+bool holds_sample(const TriangleSetup& t, int i, int ox, int oy) {
+    const int64_t k = int64_t(t.residue[i]) + 16 * (int64_t(t.dx[i]) * oy - int64_t(t.dy[i]) * ox);
+    return (k & (kSubpixels - 1)) == 0 && is_top_left(t.dx[i], t.dy[i]);
+}
+
+float depth_offset(const TriangleSetup& t, int x, int y) {
+    float z = std::fma(t.depth.a, float(x - t.depth.ax), std::fma(t.depth.b, float(y - t.depth.ay), t.depth.c));
+    for (int i = 0; i < 3; ++i)
+        if (holds_centres(t, i) && edge_at(t, i, x, y) == 0) z = z + t.depth.edge_step(t.dx[i], t.dy[i]);
+    return std::min(std::max(z, -1.0f), 0.0f);
+}
+
+float depth_offset_at_sample(const TriangleSetup& t, int x, int y, int ox, int oy) {
+    const float fx = float(x - t.depth.ax) + float(ox) * (1.0f / 16.0f);
+    const float fy = float(y - t.depth.ay) + float(oy) * (1.0f / 16.0f);
+    float z = std::fma(t.depth.a, fx, std::fma(t.depth.b, fy, t.depth.c));
+    for (int i = 0; i < 3; ++i)
+        if (holds_sample(t, i, ox, oy) && edge_at(t, i, x, y) + sample_offset(t, i, ox, oy) == 0)
+            z = z + t.depth.edge_step(t.dx[i], t.dy[i]);
+    return std::min(std::max(z, -1.0f), 0.0f);
+}
+
 SetupResult setup_triangle(const WindowVertex& v0, const WindowVertex& v1_in,
                            const WindowVertex& v2_in, CullMode cull, const Viewport& viewport,
                            TriangleSetup& out, int samples) {

@@ -35,8 +35,9 @@ inline float window_depth(float offset) { return offset + 1.0f; }
 // The depth offset as a plane over pixel centres, anchored at pixel (ax, ay):
 //   offset(x, y) = clamp(fma(a, x - ax, fma(b, y - ay, c)), -1, 0)
 // with x - ax, y - ay converted to float exactly. The plane is set up on the snapped
-// positions (D3D11.3 §3.4.1) in double precision; every path (SIMD tiles, scalar reference)
-// evaluates this same expression, so depths agree to the bit.
+// positions (D3D11.3 §3.4.1) in double precision, so that two triangles sharing an edge agree
+// on it exactly and order themselves next to it as the coverage rule sees them; every path
+// (SIMD tiles, scalar reference) evaluates this same expression, so depths agree to the bit.
 struct DepthPlane {
     float a = 0.0f, b = 0.0f, c = 0.0f;
     int16_t ax = 0, ay = 0;  // |window coordinates| < 2^14 (fixed_point.h)
@@ -49,6 +50,19 @@ struct DepthPlane {
     // Window depth: window_depth() of the above.
     float at(int x, int y) const { return window_depth(offset_at(x, y)); }
     float at_sample(int x, int y, int ox, int oy) const { return window_depth(offset_at_sample(x, y, ox, oy)); }
+
+    // A sample exactly on an edge (the edge function E is 0 there) belongs to the triangle by
+    // the top-left rule, which decides as if the sample were moved an infinitesimal step into
+    // the triangle. Two triangles that share the edge and lie on the same side of it (a fold
+    // at a silhouette, where a back face meets the front face that hides it) then both cover
+    // the sample, with exactly the same depth: the edge's. Where coverage looked, just inside
+    // the edge, the nearer of the two is the one that hides the other; so a sample on an edge
+    // reads its depth there: the plane's value plus edge_step(dX, dY) of each edge it lies on,
+    // in edge order, before the clamp. The step is 2^-10 pixel along the edge's inward normal
+    // (-dY, dX) / |(dX, dY)|: far above float rounding, well inside the 2^-9 pixel the
+    // snapping itself moves vertices by. Both triangles compute the same normal from the same
+    // (dX, dY), and the step of each is its own slope along it.
+    float edge_step(int32_t dX, int32_t dY) const;
 };
 
 enum class CullMode { none, back, front };  // front faces are counter-clockwise in NDC (GL)
@@ -91,6 +105,23 @@ inline int32_t sample_offset(const TriangleSetup& t, int i, int ox, int oy) {
     const int64_t k = int64_t(t.residue[i]) + 16 * (int64_t(t.dx[i]) * oy - int64_t(t.dy[i]) * ox);
     return int32_t(k >> kSubpixelBits);
 }
+
+// Whether samples can lie exactly on edge i of `t`: the edge function at the centre of pixel
+// (x, y) is E = 256 G(x, y) + K (triangle_setup.cpp), and at the sample (ox, oy) / 16 from it
+// E + 16 (dX oy - dY ox); a covered sample with E = 0 lies on a top-left edge, and E = 0 is
+// possible only when the constant part is a multiple of 256. Then, and only then, E = 0 is
+// exactly F = 0 (at the sample: F + sample_offset() = 0). About one top-left edge in 256
+// holds pixel centres (edges between pixel-centred vertices, axis-aligned edges through
+// centres); the traversal reads DepthPlane::edge_step() only on those.
+bool holds_centres(const TriangleSetup& t, int i);
+bool holds_sample(const TriangleSetup& t, int i, int ox, int oy);
+
+// The depth offset `t` writes at the covered centre of pixel (x, y), or at its sample
+// (ox, oy) / 16 pixels away: DepthPlane::offset_at() with DepthPlane::edge_step() of the edges
+// the sample lies on (scalar, from the int64 edge functions; what the SIMD traversal
+// computes in lanes).
+float depth_offset(const TriangleSetup& t, int x, int y);
+float depth_offset_at_sample(const TriangleSetup& t, int x, int y, int ox, int oy);
 
 // D3D11.3 §3.4.2.1 top-left rule for an edge with delta (dX, dY) in top-down window
 // coordinates whose inside lies where dX*(Py - Ya) - dY*(Px - Xa) > 0: a "left" edge goes up
