@@ -159,6 +159,41 @@ TEST(RenderFrame, SliverTurnedOverBySnappingIsLitFromTheSideItWasDrawn) {
     EXPECT_EQ(elsewhere, 0.0f);
 }
 
+// A rough heightfield seen at a grazing angle, lit from straight above with no ambient and no
+// specular term: every front face has N.L > 0 and shows some red, every back face (lit as its
+// underside) is black. A heightfield seen from above shows no back face, and the rays find
+// none; the raster must not either. Its silhouettes are folds where a back face meets the
+// front face that hides it, sharing an edge and, next to it, nearly its depth; the near plane
+// at 0.01 crowds window depth against 1 (z = 1 - 0.01/d), where such pairs round to the same
+// value (triangle_setup.h). Grid sizes 101^2 .. 301^2: the specks move but do not go away.
+TEST(RenderFrame, RasterShowsNoBackFaceOfAHeightfieldWhereRaysShowNone) {
+    for (int samples : {101, 201, 301}) {
+        const std::string json = R"({
+          "camera": {"eye": [0, 1.2, 8], "lookat": [0, 0.2, 0], "fov": 40, "near": 0.01, "far": 100},
+          "background": {"type": "colour", "colour": [0.2, 0.3, 0.9]},
+          "lights": [{"direction": [0, 1, 0], "La": [0, 0, 0], "Le": [1, 1, 1]}],
+          "materials": {"ground": {"model": "phong", "kd": [0.5, 0.5, 0.5], "ks": [0, 0, 0]}},
+          "objects": [{"type": "heightfield", "material": "ground", "relief": "fbm", "cells": 6, "octaves": 8,
+                       "samples": [)" + std::to_string(samples) + ", " + std::to_string(samples) + R"(],
+                       "size": [20, 20], "height": 1.5, "transform": {"translate": [0, -1.2, 0]}}]
+        })";
+        const int w = 320, h = 180;
+        size_t unlit[2] = {0, 0};
+        for (render::RendererKind r : {render::RendererKind::raster, render::RendererKind::raytrace}) {
+            const Frame f = render_scene(json, w, h, r, render::ShadowMode::none);
+            for (int y = 0; y < h; ++y)
+                for (int x = 0; x < w; ++x)
+                    if (f.at(x, y).r == 0.0f) {
+                        ++unlit[r == render::RendererKind::raytrace];
+                        ADD_FAILURE() << samples << "^2 samples, " << (r == render::RendererKind::raster ? "raster" : "rays")
+                                      << ": pixel (" << x << ", " << y << ") shows a back face";
+                    }
+        }
+        EXPECT_EQ(unlit[0], 0u) << samples << "^2 samples, raster";
+        EXPECT_EQ(unlit[1], 0u) << samples << "^2 samples, rays";
+    }
+}
+
 TEST(RenderFrame, RayCastBlendsTransparencyAsTheRasterizerDoes) {
     const int w = 160, h = 120;
     const Frame raster = render_scene(kGlass, w, h, render::RendererKind::raster, render::ShadowMode::none);
