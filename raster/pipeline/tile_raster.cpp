@@ -31,10 +31,14 @@ struct EdgeLanes {
     int32_t step_x, step_y;  // per stamp
     vint offset;
     bool accepted;  // inside over the whole region, at every sample
-    // Single-sampled: 0 when pixel centres can lie exactly on the edge (holds_centres()), where
-    // F = 0 and the depth takes the edge's step (DepthPlane::edge_step()); kNever otherwise.
-    int32_t on_edge = kNever;
-    float step = 0.0f;
+};
+
+// For a triangle whose edges may run through pixel centres (holds_centres()): per edge, the F
+// at which a lane lies exactly on it (0, or kNever for an edge that holds none or is accepted
+// over the region) and its depth step (DepthPlane::edge_step()).
+struct OnEdge {
+    int32_t f[3];
+    float step[3];
 };
 
 EdgeLanes edge_lanes(int32_t f, int32_t dx, int32_t dy) {
@@ -44,8 +48,6 @@ EdgeLanes edge_lanes(int32_t f, int32_t dx, int32_t dy) {
 // An edge that is inside over the whole region: F = 0 everywhere passes "F >= 0".
 EdgeLanes accepted_edge() { return {0, 0, 0, vint(0), true}; }
 
-// The depth offsets' range in the tile buffers (triangle_setup.h: z - 1).
-const vfloat kNear(-1.0f), kFar(0.0f);
 
 // Visits the stamps with corners (sx, sy), sx0 <= sx <= sx1, sy0 <= sy <= sy1 (stamp-aligned,
 // frame coordinates): coverage from the three edges, depth offset from the plane (with
@@ -58,8 +60,8 @@ const vfloat kNear(-1.0f), kFar(0.0f);
 // (sphere grid at 1080p, 1 thread, CPU time per frame: 16k triangles 3.4 -> 2.4 ms, 100k
 // 8.2 -> 5.9 ms; regions up to 16 pixels gave 3.2 and 6.0 ms, up to 64 the same as 32).
 template <bool kBranchless, bool kOnEdge, class Sink>
-inline void traverse_stamps(const DepthPlane& plane, const EdgeLanes (&e)[3], int sx0, int sy0, int sx1,
-                            int sy1, const TileRect& tile, int tile_size, Sink&& sink) {
+inline void traverse_stamps(const DepthPlane& plane, const EdgeLanes (&e)[3], const OnEdge* on, int sx0, int sy0,
+                            int sx1, int sy1, const TileRect& tile, int tile_size, Sink&& sink) {
     const vfloat lane_x = simd::to_float(simd::stamp_x());
     const vfloat lane_y = simd::to_float(simd::stamp_y());
     const vfloat a(plane.a), b(plane.b), c(plane.c);
@@ -84,11 +86,11 @@ inline void traverse_stamps(const DepthPlane& plane, const EdgeLanes (&e)[3], in
             if (kBranchless || simd::any(covered)) {
                 vfloat z = simd::fma(a, vfloat(fx) + lane_x, z_row);
                 if constexpr (kOnEdge) {
-                    z = simd::select(f0 == vint(e[0].on_edge), z + vfloat(e[0].step), z);
-                    z = simd::select(f1 == vint(e[1].on_edge), z + vfloat(e[1].step), z);
-                    z = simd::select(f2 == vint(e[2].on_edge), z + vfloat(e[2].step), z);
+                    z = simd::select(f0 == vint(on->f[0]), z + vfloat(on->step[0]), z);
+                    z = simd::select(f1 == vint(on->f[1]), z + vfloat(on->step[1]), z);
+                    z = simd::select(f2 == vint(on->f[2]), z + vfloat(on->step[2]), z);
                 }
-                z = simd::min(simd::max(z, kNear), kFar);
+                z = simd::min(simd::max(z, vfloat(-1.0f)), vfloat(0.0f));
                 sink(index, sx, sy, covered, z);
             } else if ((exit0 && !simd::any(f0 >= zero)) || (exit1 && !simd::any(f1 >= zero)) ||
                        (exit2 && !simd::any(f2 >= zero))) {
@@ -119,7 +121,7 @@ inline void fill_stamps(const DepthPlane& plane, int sx0, int sy0, int sx1, int 
         size_t index = (unsigned(sy - tile.y0) / kStampH * stamps_per_row + unsigned(sx0 - tile.x0) / kStampW) * kLanes;
         for (int sx = sx0; sx <= sx1; sx += kStampW, index += kLanes, fx += float(kStampW)) {
             vfloat z = simd::fma(a, vfloat(fx) + lane_x, z_row);
-            z = simd::min(simd::max(z, kNear), kFar);
+            z = simd::min(simd::max(z, vfloat(-1.0f)), vfloat(0.0f));
             sink(index, sx, sy, all, z);
         }
     }
@@ -135,10 +137,10 @@ struct SampleLanes {
     float ox[kMaxSamples], oy[kMaxSamples];
     // Per edge and sample: the F (before the sample's offset) at which the sample lies exactly
     // on the edge, -offset, when such samples exist (holds_sample()), else kNever; and the
-    // edge's depth step. on_edge_any: whether any edge has any.
+    // edge's depth step. edge_holds: bit i when edge i has any.
     int32_t on_edge[3][kMaxSamples];
     float step[3];
-    bool on_edge_any = false, edge_holds[3] = {false, false, false};
+    unsigned edge_holds = 0;
 
     SampleLanes(const TriangleSetup& t, std::span<const SampleOffset> pattern) : count(int(pattern.size())) {
         for (int i = 0; i < 3; ++i) {
@@ -149,10 +151,9 @@ struct SampleLanes {
                 hi[i] = std::max(hi[i], offset[i][s]);
                 const bool holds = holds_sample(t, i, pattern[s].x, pattern[s].y);
                 on_edge[i][s] = holds ? -offset[i][s] : kNever;
-                edge_holds[i] = edge_holds[i] || holds;
+                edge_holds |= unsigned(holds) << i;
             }
-            step[i] = edge_holds[i] ? t.depth.edge_step(t.dx[i], t.dy[i]) : 0.0f;
-            on_edge_any = on_edge_any || edge_holds[i];
+            step[i] = (edge_holds >> i) & 1 ? t.depth.edge_step(t.dx[i], t.dy[i]) : 0.0f;
         }
         for (int s = 0; s < count; ++s) {
             ox[s] = float(pattern[s].x) * (1.0f / 16.0f);
@@ -210,7 +211,7 @@ inline void traverse_sample_stamps(const DepthPlane& plane, const EdgeLanes (&e)
                         z = simd::select(f1 == vint(samples.on_edge[1][s]), z + vfloat(samples.step[1]), z);
                         z = simd::select(f2 == vint(samples.on_edge[2][s]), z + vfloat(samples.step[2]), z);
                     }
-                    z = simd::min(simd::max(z, kNear), kFar);
+                    z = simd::min(simd::max(z, vfloat(-1.0f)), vfloat(0.0f));
                     sink(index, sx, sy, s, covered[s], z);
                 }
             } else if ((exit0 && !simd::any((f0 + hi0) >= zero)) || (exit1 && !simd::any((f1 + hi1) >= zero)) ||
@@ -244,7 +245,7 @@ inline void fill_sample_stamps(const DepthPlane& plane, const SampleLanes& sampl
             const vfloat x = vfloat(fx) + lane_x;
             for (int s = 0; s < samples.count; ++s) {
                 vfloat z = simd::fma(a, x + vfloat(samples.ox[s]), simd::fma(b, y_row + vfloat(samples.oy[s]), c));
-                z = simd::min(simd::max(z, kNear), kFar);
+                z = simd::min(simd::max(z, vfloat(-1.0f)), vfloat(0.0f));
                 sink(index, sx, sy, s, all, z);
             }
         }
@@ -257,36 +258,31 @@ int64_t edge_at(const TriangleSetup& t, int i, int x, int y) {
 }
 
 // Traverses the part of triangle `t` inside `tile`, calling sink as traverse_stamps does, or,
-// with `samples` (multisampling), as traverse_sample_stamps does.
-template <bool kMulti, class Sink>
-inline void traverse(const TriangleSetup& t, const TileRect& tile, int tile_size, const SampleLanes* samples,
-                     Sink&& sink) {
+// with `samples` (multisampling), as traverse_sample_stamps does. kOnEdge: some edge of `t`
+// may hold samples exactly (holds_centres(), holds_sample(); rare), whose lanes read the depth
+// step there and on which a block is accepted whole only where F > 0.
+template <bool kMulti, bool kOnEdge, class Sink>
+inline void traverse_with(const TriangleSetup& t, const TileRect& tile, int tile_size, const SampleLanes* samples,
+                          Sink&& sink) {
     const int x0 = std::max<int>(t.minx, tile.x0), x1 = std::min<int>(t.maxx, tile.x1 - 1);
     const int y0 = std::max<int>(t.miny, tile.y0), y1 = std::min<int>(t.maxy, tile.y1 - 1);
     if (x0 > x1 || y0 > y1) return;
     const int sx0 = x0 & ~(kStampW - 1), sy0 = y0 & ~(kStampH - 1);
-    // Edges that may hold samples exactly (holds_centres(), holds_sample()): their lanes read
-    // the depth step there, and a block is accepted whole only where F > 0 on them.
-    bool holds[3];
-    for (int i = 0; i < 3; ++i) holds[i] = kMulti ? samples->edge_holds[i] : holds_centres(t, i);
-    const bool on_edge = holds[0] || holds[1] || holds[2];
-    const auto partial = [&]<bool kBranchless>(EdgeLanes (&lanes)[3], int px0, int py0, int px1, int py1) {
+    const unsigned holds = kOnEdge ? (kMulti ? samples->edge_holds : t.on_edge) : 0u;
+    const auto partial = [&]<bool kBranchless>(const EdgeLanes (&lanes)[3], int px0, int py0, int px1, int py1) {
         if constexpr (kMulti) {
-            if (on_edge)
-                traverse_sample_stamps<kBranchless, true>(t.depth, lanes, *samples, px0, py0, px1, py1, tile,
-                                                          tile_size, sink);
-            else
-                traverse_sample_stamps<kBranchless, false>(t.depth, lanes, *samples, px0, py0, px1, py1, tile,
-                                                           tile_size, sink);
-        } else if (on_edge) {
-            for (int i = 0; i < 3; ++i)
-                if (holds[i] && !lanes[i].accepted) {
-                    lanes[i].on_edge = 0;
-                    lanes[i].step = t.depth.edge_step(t.dx[i], t.dy[i]);
-                }
-            traverse_stamps<kBranchless, true>(t.depth, lanes, px0, py0, px1, py1, tile, tile_size, sink);
+            traverse_sample_stamps<kBranchless, kOnEdge>(t.depth, lanes, *samples, px0, py0, px1, py1, tile,
+                                                         tile_size, sink);
+        } else if constexpr (kOnEdge) {
+            OnEdge on;
+            for (int i = 0; i < 3; ++i) {
+                const bool here = (holds >> i) & 1 && !lanes[i].accepted;
+                on.f[i] = here ? 0 : kNever;
+                on.step[i] = here ? t.depth.edge_step(t.dx[i], t.dy[i]) : 0.0f;
+            }
+            traverse_stamps<kBranchless, true>(t.depth, lanes, &on, px0, py0, px1, py1, tile, tile_size, sink);
         } else {
-            traverse_stamps<kBranchless, false>(t.depth, lanes, px0, py0, px1, py1, tile, tile_size, sink);
+            traverse_stamps<kBranchless, false>(t.depth, lanes, nullptr, px0, py0, px1, py1, tile, tile_size, sink);
         }
     };
     if (t.small) {
@@ -319,7 +315,7 @@ inline void traverse(const TriangleSetup& t, const TileRect& tile, int tile_size
                 const int64_t hi = f + std::max<int64_t>(0, -dy) * kSpan + std::max<int64_t>(0, dx) * kSpan +
                                    (kMulti ? samples->hi[i] : 0);
                 if (hi < 0) rejected = true;
-                else if (lo > (holds[i] ? 0 : -1)) lanes[i] = accepted_edge(), full[i] = true;
+                else if (lo >= (kOnEdge && (holds >> i) & 1 ? 1 : 0)) lanes[i] = accepted_edge(), full[i] = true;
                 else lanes[i] = edge_lanes(int32_t(edge_at(t, i, px0, py0)), t.dx[i], t.dy[i]);
             }
             if (rejected) continue;
@@ -334,6 +330,15 @@ inline void traverse(const TriangleSetup& t, const TileRect& tile, int tile_size
     }
 }
 
+template <bool kMulti, class Sink>
+inline void traverse(const TriangleSetup& t, const TileRect& tile, int tile_size, const SampleLanes* samples,
+                     Sink&& sink) {
+    if ((kMulti ? samples->edge_holds : t.on_edge) != 0)
+        traverse_with<kMulti, true>(t, tile, tile_size, samples, sink);
+    else
+        traverse_with<kMulti, false>(t, tile, tile_size, samples, sink);
+}
+
 }  // namespace
 
 void TileBuffers::clear(int tile_size, int sample_count) {
@@ -344,7 +349,7 @@ void TileBuffers::clear(int tile_size, int sample_count) {
     triangle.resize(n);
     const vint none(int32_t(0xFFFFFFFFu));
     for (size_t i = 0; i < n; i += kLanes) {
-        kFar.store(&depth[i]);
+        vfloat(0.0f).store(&depth[i]);  // depth offset of the far plane
         none.store(reinterpret_cast<int32_t*>(&triangle[i]));
     }
 }

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <numeric>
 
 namespace tessera::pipeline {
 
@@ -64,13 +65,21 @@ int64_t edge_at(const TriangleSetup& t, int i, int x, int y) {
     return t.f[i] + int64_t(t.dx[i]) * (y - t.miny) - int64_t(t.dy[i]) * (x - t.minx);
 }
 
+// Whether dX y - dY x = -K / 256 has integer solutions, for K a multiple of 256.
+bool line_meets_centres(int32_t dX, int32_t dY, int64_t k_over_256) {
+    const int64_t g = std::gcd(int64_t(dX), int64_t(dY));
+    return g != 0 && k_over_256 % g == 0;
+}
+
 }  // namespace
 
-bool holds_centres(const TriangleSetup& t, int i) { return t.residue[i] == 0 && is_top_left(t.dx[i], t.dy[i]); }
-
 bool holds_sample(const TriangleSetup& t, int i, int ox, int oy) {
+    if (!is_top_left(t.dx[i], t.dy[i])) return false;
     const int64_t k = int64_t(t.residue[i]) + 16 * (int64_t(t.dx[i]) * oy - int64_t(t.dy[i]) * ox);
-    return (k & (kSubpixels - 1)) == 0 && is_top_left(t.dx[i], t.dy[i]);
+    if ((k & (kSubpixels - 1)) != 0) return false;
+    // K >> 8 from F at the box corner (setup_triangle), then the sample's whole part.
+    const int64_t whole = t.f[i] - int64_t(t.dx[i]) * t.miny + int64_t(t.dy[i]) * t.minx + (k >> kSubpixelBits);
+    return line_meets_centres(t.dx[i], t.dy[i], whole);
 }
 
 float depth_offset(const TriangleSetup& t, int x, int y) {
@@ -117,12 +126,22 @@ SetupResult setup_triangle(const WindowVertex& v0, const WindowVertex& v1_in,
     // E(P) = dX*(Py - Ya) - dY*(Px - Xa) at P = (256x + 128, 256y + 128) equals
     // 256*(dX*y - dY*x) + K. Inside: E > 0, or E == 0 on a top/left edge, i.e.
     // E - 1 + tl >= 0, i.e. (dX*y - dY*x) + floor((K - 1 + tl) / 256) >= 0 (>> floors).
+    unsigned on_edge = 0;  // TriangleSetup::on_edge
     auto edge = [&](int i, const WindowVertex& a, const WindowVertex& b) {
         const int32_t dX = b.X - a.X, dY = b.Y - a.Y;
         const int64_t K = int64_t(dX) * (kSubpixels / 2 - a.Y) - int64_t(dY) * (kSubpixels / 2 - a.X) -
                           (is_top_left(dX, dY) ? 0 : 1);
         out.f[i] = int64_t(dX) * miny - int64_t(dY) * minx + (K >> kSubpixelBits);
         out.residue[i] = uint8_t(K & (kSubpixels - 1));
+        // holds_centres(): a top-left edge (K is then E's constant part, no bias) whose line
+        // meets the centres' lattice: along a row or column, when that row or column is one
+        // of centres; otherwise by Bezout.
+        if ((K & (kSubpixels - 1)) == 0 && is_top_left(dX, dY)) {
+            const bool meets = dY == 0   ? (a.Y & (kSubpixels - 1)) == kSubpixels / 2
+                               : dX == 0 ? (a.X & (kSubpixels - 1)) == kSubpixels / 2
+                                         : line_meets_centres(dX, dY, K >> kSubpixelBits);
+            on_edge |= unsigned(meets) << i;
+        }
         out.dx[i] = dX;
         out.dy[i] = dY;
     };
@@ -136,6 +155,7 @@ SetupResult setup_triangle(const WindowVertex& v0, const WindowVertex& v1_in,
     out.maxy = int16_t(maxy);
     out.small = (xmax - xmin) < kSmallExtent && (ymax - ymin) < kSmallExtent;
     out.transparent = 0;
+    out.on_edge = uint8_t(on_edge);
     return SetupResult::drawn;
 }
 

@@ -80,6 +80,7 @@ struct TriangleSetup {
     uint32_t triangle;    // id in the mesh (submission order)
     uint8_t small : 1;        // vertex box < kSmallExtent: int32 traversal anywhere near the box
     uint8_t transparent : 1;  // rasterized after the opaque pass, without depth writes
+    uint8_t on_edge : 3;      // bit i: edge i's line runs through pixel centres (holds_centres())
     // Per edge, K mod 256 for the edge's constant K at the pixel centre (triangle_setup.cpp):
     // what the reduced edge function needs to move exactly to another sample of the pixel
     // (sample_offset()).
@@ -107,13 +108,14 @@ inline int32_t sample_offset(const TriangleSetup& t, int i, int ox, int oy) {
 }
 
 // Whether samples can lie exactly on edge i of `t`: the edge function at the centre of pixel
-// (x, y) is E = 256 G(x, y) + K (triangle_setup.cpp), and at the sample (ox, oy) / 16 from it
-// E + 16 (dX oy - dY ox); a covered sample with E = 0 lies on a top-left edge, and E = 0 is
-// possible only when the constant part is a multiple of 256. Then, and only then, E = 0 is
-// exactly F = 0 (at the sample: F + sample_offset() = 0). About one top-left edge in 256
-// holds pixel centres (edges between pixel-centred vertices, axis-aligned edges through
-// centres); the traversal reads DepthPlane::edge_step() only on those.
-bool holds_centres(const TriangleSetup& t, int i);
+// (x, y) is E = 256 G(x, y) + K with G = dX y - dY x (triangle_setup.cpp), and at the sample
+// (ox, oy) / 16 from it E + 16 (dX oy - dY ox). A covered sample with E = 0 lies on a top-left
+// edge, and E = 0 has integer solutions exactly when the constant part is a multiple of 256
+// whose 256th is a multiple of gcd(dX, dY) (Bezout); then E = 0 is exactly F = 0 (at the
+// sample: F + sample_offset() = 0). Only edges between pixel-centred vertices, edges along a
+// row or column of centres, and a few in 65536 others qualify; the traversal reads
+// DepthPlane::edge_step() only on those. holds_centres() is set up once (TriangleSetup::on_edge).
+inline bool holds_centres(const TriangleSetup& t, int i) { return (t.on_edge >> i) & 1; }
 bool holds_sample(const TriangleSetup& t, int i, int ox, int oy);
 
 // The depth offset `t` writes at the covered centre of pixel (x, y), or at its sample
