@@ -1,5 +1,5 @@
 // The tile rasterizer (raster/pipeline/tile_raster.h) against a brute-force evaluation of the
-// setup's edge functions (int64, every pixel) and DepthPlane::at: coverage, depth and ids of
+// setup's edge functions (int64, every pixel) and depth_offset(): coverage, depth and ids of
 // each path (tiny and small triangles stepped in int32 lanes, big ones by 16x16 blocks with
 // trivial accept and reject, the depth-only and the depth-tested fragment variants) for
 // triangles of every size class, tile sizes 16 .. 256, partial tiles at the viewport's borders
@@ -7,6 +7,7 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <array>
 #include <bit>
 #include <cmath>
 #include <cstdlib>
@@ -59,18 +60,20 @@ bool meets(const TriangleSetup& t, const TileRect& r) {
 }
 
 // `t` rasterized alone into cleared buffers: at every pixel of the tile, written exactly where
-// the edge functions cover it and its depth is LESS than the cleared 1.0, with depth at(x, y)
-// to the bit and the triangle's id (ids untouched for a depth-only render). Outside the
+// the edge functions cover it and its depth offset is LESS than the cleared 0 (the far plane),
+// with depth_offset(t, x, y) to the bit and the triangle's id (ids untouched for a depth-only
+// render). Outside the
 // setup's box nothing may be covered (the setup tests prove it of the edge functions), so
 // only untouched pixels are checked there.
 void expect_alone(const TriangleSetup& t, const TileRect& r, const TileBuffers& b, bool ids, size_t& covered) {
     for (int y = r.y0; y < r.y1; ++y)
         for (int x = r.x0; x < r.x1; ++x) {
             const bool in_box = x >= t.minx && x <= t.maxx && y >= t.miny && y <= t.maxy;
-            const float z = in_box ? t.depth.at(x, y) : 1.0f;
-            const bool written = in_box && setup_covers(t, x, y) && z < 1.0f;
+            const bool in = in_box && setup_covers(t, x, y);
+            const float z = in ? depth_offset(t, x, y) : 0.0f;
+            const bool written = in && z < 0.0f;
             const size_t i = b.index(x - r.x0, y - r.y0);
-            const float depth = written ? z : 1.0f;
+            const float depth = written ? z : 0.0f;
             const uint32_t id = written && ids ? t.triangle : kNoTriangle;
             if (std::bit_cast<uint32_t>(b.depth[i]) != std::bit_cast<uint32_t>(depth) || b.triangle[i] != id) {
                 FAIL() << "triangle " << t.triangle << (t.small ? " (small)" : " (big)") << " box [" << t.minx
@@ -185,25 +188,28 @@ TEST(PipelineTileRaster, HugeTrianglesAtTheFarCornerOfTheLargestViewport) {
     EXPECT_GT(covered, 100000u);
 }
 
-// Brute force of a whole frame: triangles in submission order, depth test LESS, at every
-// pixel of the viewport.
+// Brute force of a whole frame: triangles in submission order, depth test LESS on the depth
+// offsets, at every pixel of the viewport; `depth` gets window depth.
 void brute_force_frame(const std::vector<TriangleSetup>& setups, int w, int h, std::vector<uint32_t>& ids,
                        std::vector<float>& depth) {
     ids.assign(size_t(w) * h, kNoTriangle);
-    depth.assign(size_t(w) * h, 1.0f);
+    std::vector<float> offset(size_t(w) * h, 0.0f);
     for (const TriangleSetup& t : setups)
         for (int y = t.miny; y <= t.maxy; ++y)
             for (int x = t.minx; x <= t.maxx; ++x) {
                 const size_t i = size_t(y) * w + x;
-                const float z = t.depth.at(x, y);
-                if (setup_covers(t, x, y) && z < depth[i]) depth[i] = z, ids[i] = t.triangle;
+                if (!setup_covers(t, x, y)) continue;
+                const float z = depth_offset(t, x, y);
+                if (z < offset[i]) offset[i] = z, ids[i] = t.triangle;
             }
+    depth.resize(offset.size());
+    std::transform(offset.begin(), offset.end(), depth.begin(), window_depth);
 }
 
 // Overlapping triangles through the tile buffers, flushed to a row-major frame (streamed where
 // the rows are aligned), against the brute-force frame: the depth test and the flush. The
-// third frame has only triangles at depth 0.5 (and a few at 1.0), which tie wherever they
-// overlap: the first one drawn keeps the pixel.
+// third frame has only triangles at depth 0.5 (and a few at 1.0: depth offsets -0.5 and 0),
+// which tie wherever they overlap, edge steps aside: the first one drawn keeps the pixel.
 TEST(PipelineTileRaster, DepthTestedFramesMatchBruteForce) {
     Rng rng(16303);
     for (const auto& [w, h, flat] : {std::tuple{333, 259, false}, std::tuple{320, 240, false},  // 320: rows on cache lines
@@ -211,7 +217,7 @@ TEST(PipelineTileRaster, DepthTestedFramesMatchBruteForce) {
         Classes classes;
         std::vector<TriangleSetup> setups = random_setups(rng, w, h, flat ? 60 : 400, classes);
         for (TriangleSetup& t : setups)
-            if (flat) t.depth = {0.0f, 0.0f, t.triangle % 8 ? 0.5f : 1.0f, t.depth.ax, t.depth.ay};
+            if (flat) t.depth = {0.0f, 0.0f, t.triangle % 8 ? -0.5f : 0.0f, t.depth.ax, t.depth.ay};
         std::vector<uint32_t> expected_ids;
         std::vector<float> expected_depth;
         brute_force_frame(setups, w, h, expected_ids, expected_depth);
@@ -244,8 +250,128 @@ TEST(PipelineTileRaster, DepthTestedFramesMatchBruteForce) {
     }
 }
 
-// rasterize_tested: exactly the covered pixels whose depth is LESS than a given row-major
-// depth buffer (ties fail), with depth at(x, y) to the bit (the depth buffer is const).
+// The depth of a covered pixel centre in exact arithmetic: the plane through the snapped
+// vertices (barycentrics from the int64 edge functions, the sum in long double).
+long double exact_depth(const WindowVertex v[3], int x, int y) {
+    const int64_t px = test::pixel_centre(x), py = test::pixel_centre(y);
+    return (static_cast<long double>(test::orient(v[1], v[2], px, py)) * v[0].z +
+            static_cast<long double>(test::orient(v[2], v[0], px, py)) * v[1].z +
+            static_cast<long double>(test::orient(v[0], v[1], px, py)) * v[2].z) /
+           static_cast<long double>(test::orient(v[0], v[1], v[2].X, v[2].Y));
+}
+
+// Triangles whose depths all lie within 1e-6 of 0.995 (where window depths are 6e-8 apart),
+// overlapping everywhere: at every pixel the tile rasterizer keeps a triangle whose exact depth
+// there is the least, up to the rounding of the two planes' float evaluation in depth offsets
+// (triangle_setup.h): 4 ulps of each of its terms a (x - ax), b (y - ay) and z - 1, 1e-9 here.
+TEST(PipelineTileRaster, KeepsTheNearerByExactArithmetic) {
+    const int w = 200, h = 150;
+    const Viewport viewport(w, h);
+    Rng rng(16306);
+    std::vector<TriangleSetup> setups;
+    std::vector<std::array<WindowVertex, 3>> vertices;
+    while (setups.size() < 300) {
+        test::RandomTriangle tri = test::random_triangle(rng, w, h, std::array{6, 30, 120}[setups.size() % 3]);
+        for (WindowVertex& v : tri.v) v.z = 0.995f + 1e-6f * rng.unit();
+        TriangleSetup t;
+        if (setup_triangle(tri.v[0], tri.v[1], tri.v[2], CullMode::none, viewport, t) != SetupResult::drawn) continue;
+        t.triangle = uint32_t(setups.size());
+        setups.push_back(t);
+        vertices.push_back({tri.v[0], tri.v[1], tri.v[2]});
+    }
+    AlignedVector<uint32_t> ids(size_t(w) * h);
+    AlignedVector<float> depth(size_t(w) * h);
+    TileBuffers buffers;
+    buffers.clear(64);
+    for (const TileRect& r : tiles(w, h, 64)) {
+        for (const TriangleSetup& t : setups) rasterize_opaque(t, r, buffers);
+        buffers.flush(r.x1 - r.x0, r.y1 - r.y0, ids.data() + size_t(r.y0) * w + r.x0,
+                      depth.data() + size_t(r.y0) * w + r.x0, size_t(w), false);
+    }
+    const auto rounding = [&](const TriangleSetup& t, int x, int y, long double z) {
+        const double dx = double(x - t.depth.ax), dy = double(y - t.depth.ay);
+        return 4.0 * 0x1p-24 * (std::fabs(t.depth.a * dx) + std::fabs(t.depth.b * dy) + std::fabs(double(z - 1.0L)));
+    };
+    size_t farther = 0, close_calls = 0, checked = 0;
+    for (int y = 0; y < h; ++y)
+        for (int x = 0; x < w; ++x) {
+            const uint32_t kept = ids[size_t(y) * w + x];
+            long double least = 2.0L;
+            double least_rounding = 0.0;
+            size_t second = 0;
+            for (const TriangleSetup& t : setups) {
+                if (x < t.minx || x > t.maxx || y < t.miny || y > t.maxy || !setup_covers(t, x, y)) continue;
+                const long double z = exact_depth(vertices[t.triangle].data(), x, y);
+                if (z < least) least = z, least_rounding = rounding(t, x, y, z);
+                ++second;
+            }
+            if (kept == kNoTriangle) {
+                ASSERT_EQ(least, 2.0L) << "pixel (" << x << ", " << y << ") covered but empty";
+                continue;
+            }
+            const long double z = exact_depth(vertices[kept].data(), x, y);
+            const double allowed = least_rounding + rounding(setups[kept], x, y, z);
+            farther += double(z - least) > allowed;
+            close_calls += second > 1 && double(z - least) <= 6e-8;  // within a float spacing near 1
+            ++checked;
+        }
+    EXPECT_EQ(farther, 0u);
+    EXPECT_GT(checked, size_t(w * h / 2));
+    EXPECT_GT(close_calls, 1000u);
+}
+
+// A fold: two triangles on the same side of a shared edge that runs exactly through sample
+// positions (vertical, horizontal, diagonal; through pixel centres, and through sample 3 of
+// the 4x pattern at (2, 6) / 16), one deeper inside than the other. Both cover the samples on
+// the edge (top-left rule) with exactly the same depth; there the one that is nearer just
+// inside the edge, where coverage decided, must be kept, whichever was drawn first. (On a
+// right or bottom edge neither covers them.)
+TEST(PipelineTileRaster, FoldOverAnEdgeThroughSamplesKeepsTheNearerInside) {
+    const Viewport viewport(128, 128);
+    for (int samples : {1, 4}) {
+        // Sample 0 of one sample at the centre; sample 3 of four at (2, 6) / 16 pixels from it.
+        const int ox = samples == 1 ? 0 : 32, oy = samples == 1 ? 0 : 96, s = samples == 1 ? 0 : 3;
+        const auto at = [&](int x, int y, float z) { return WindowVertex{x * 256 + 128 + ox, y * 256 + 128 + oy, z}; };
+        // Edge a -> b, then the third vertices of the nearer and the deeper triangle.
+        const WindowVertex folds[][4] = {
+            {at(20, 20, 0.5f), at(20, 90, 0.6f), at(70, 55, 0.55f), at(45, 55, 0.7f)},   // vertical, inside right
+            {at(90, 20, 0.5f), at(90, 90, 0.6f), at(40, 55, 0.55f), at(65, 55, 0.7f)},   // vertical, inside left
+            {at(20, 20, 0.5f), at(90, 20, 0.6f), at(55, 70, 0.55f), at(55, 45, 0.7f)},   // horizontal, inside below
+            {at(20, 90, 0.5f), at(90, 90, 0.6f), at(55, 40, 0.55f), at(55, 65, 0.7f)},   // horizontal, inside above
+            {at(20, 20, 0.5f), at(90, 90, 0.6f), at(90, 30, 0.55f), at(70, 40, 0.72f)},  // diagonal
+            {at(20, 20, 0.5f), at(90, 90, 0.6f), at(30, 90, 0.55f), at(40, 70, 0.72f)},
+        };
+        int on_edge = 0;
+        for (const auto& f : folds)
+            for (bool nearer_first : {true, false}) {
+                TriangleSetup nearer, deeper;
+                ASSERT_EQ(setup_triangle(f[0], f[1], f[2], CullMode::none, viewport, nearer, samples), SetupResult::drawn);
+                ASSERT_EQ(setup_triangle(f[0], f[1], f[3], CullMode::none, viewport, deeper, samples), SetupResult::drawn);
+                nearer.triangle = 1;
+                deeper.triangle = 2;
+                TileBuffers buffers;
+                buffers.clear(128, samples);
+                const TileRect r{0, 0, 128, 128};
+                for (const TriangleSetup* t : nearer_first ? std::array{&nearer, &deeper} : std::array{&deeper, &nearer})
+                    rasterize_opaque(*t, r, buffers);
+                // Samples on the edge line: (x, y) on a -> b, with a the first pixel.
+                const uint32_t expected = test::is_top_or_left(f[0], f[1], f[2]) ? 1u : kNoTriangle;
+                const int dx = (f[1].X - f[0].X) / 256, dy = (f[1].Y - f[0].Y) / 256, n = std::max(std::abs(dx), std::abs(dy));
+                for (int k = 1; k < n; ++k) {
+                    const int x = f[0].X / 256 + k * (dx / n), y = f[0].Y / 256 + k * (dy / n);
+                    const size_t i = size_t(s) * buffers.plane() + buffers.index(x, y);
+                    ASSERT_EQ(buffers.triangle[i], expected) << "fold " << (&f - folds) << ", sample at pixel (" << x << ", "
+                                                       << y << "), nearer drawn " << (nearer_first ? "first" : "second");
+                    on_edge += expected == 1u;
+                }
+            }
+        EXPECT_GT(on_edge, 400);
+    }
+}
+
+// rasterize_tested: exactly the covered pixels whose window depth is LESS than a given
+// row-major window depth buffer (ties fail), with window_depth(depth_offset(t, x, y)) to the
+// bit (the depth buffer is const).
 TEST(PipelineTileRaster, TestedFragmentsAreTheCoveredPixelsInFront) {
     const int w = 301, h = 203;
     Rng rng(16304);
@@ -269,7 +395,7 @@ TEST(PipelineTileRaster, TestedFragmentsAreTheCoveredPixelsInFront) {
                 const int y0 = std::max<int>(r.y0, t.miny), y1 = std::min<int>(r.y1 - 1, t.maxy);
                 for (int y = y0; y <= y1; ++y)
                     for (int x = x0; x <= x1; ++x) {
-                        const float z = t.depth.at(x, y);
+                        const float z = setup_covers(t, x, y) ? window_depth(depth_offset(t, x, y)) : rng.unit();
                         float& d = depth[size_t(y - r.y0) * stride + size_t(x - r.x0)];
                         switch (rng.bits() % 6) {
                             case 0: d = z; break;
@@ -285,7 +411,7 @@ TEST(PipelineTileRaster, TestedFragmentsAreTheCoveredPixelsInFront) {
                 for (int y = y0; y <= y1; ++y)
                     for (int x = x0; x <= x1; ++x) {
                         if (!setup_covers(t, x, y)) continue;
-                        const float z = t.depth.at(x, y);
+                        const float z = window_depth(depth_offset(t, x, y));
                         const float d = depth[size_t(y - r.y0) * stride + size_t(x - r.x0)];
                         ties += z == d;
                         if (z < d) expected.emplace_back(y, x, std::bit_cast<uint32_t>(z));
@@ -322,8 +448,9 @@ TEST(PipelineTileRaster, TileBufferIndexIsTheStampLayout) {
     }
 }
 
-// flush(): the tile's pixels [0, width) x [0, height) to rows of `stride` values, nothing else
-// written, and the buffers cleared (depth 1.0, no triangle) for the next tile.
+// flush(): the tile's pixels [0, width) x [0, height) to rows of `stride` values (depth offsets
+// as window depth), nothing else written, and the buffers cleared (depth offset 0, no
+// triangle) for the next tile.
 TEST(PipelineTileRaster, FlushCopiesTheTileToRowsAndClearsIt) {
     Rng rng(16305);
     for (int size : kTileSizes)
@@ -333,7 +460,7 @@ TEST(PipelineTileRaster, FlushCopiesTheTileToRowsAndClearsIt) {
                     TileBuffers b;
                     b.clear(size);
                     for (size_t i = 0; i < b.depth.size(); ++i) {
-                        b.depth[i] = rng.unit();
+                        b.depth[i] = -rng.unit();
                         b.triangle[i] = uint32_t(rng.bits());
                     }
                     const TileBuffers filled = b;
@@ -348,11 +475,12 @@ TEST(PipelineTileRaster, FlushCopiesTheTileToRowsAndClearsIt) {
                             const bool in = int(x) < width && int(y) < height;
                             const size_t i = in ? filled.index(int(x), int(y)) : 0;
                             const uint32_t id = in && with_ids ? filled.triangle[i] : 0x5A5A5A5Au;
-                            const float d = in ? filled.depth[i] : -2.0f;
+                            const float d = in ? window_depth(filled.depth[i]) : -2.0f;
                             ASSERT_EQ(ids[y * stride + x], id) << "size " << size << " pixel " << x << ", " << y;
                             ASSERT_EQ(depth[y * stride + x], d) << "size " << size << " pixel " << x << ", " << y;
                         }
-                    EXPECT_TRUE(std::all_of(b.depth.begin(), b.depth.end(), [](float d) { return d == 1.0f; }));
+                    EXPECT_TRUE(std::all_of(b.depth.begin(), b.depth.end(),
+                                            [](float d) { return std::bit_cast<uint32_t>(d) == 0u; }));
                     if (with_ids) {
                         EXPECT_TRUE(std::all_of(b.triangle.begin(), b.triangle.end(),
                                                 [](uint32_t id) { return id == kNoTriangle; }));

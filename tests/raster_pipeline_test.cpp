@@ -12,10 +12,12 @@
 #include <mutex>
 
 #include "raster/pipeline/barycentrics.h"
+#include "raster/pipeline/clip.h"
 #include "raster/core/camera.h"
 #include "raster/pipeline/rasterizer.h"
 #include "raster/pipeline/reference_rasterizer.h"
 #include "raster/workloads/test_meshes.h"
+#include "seeded_random.h"
 
 namespace tessera {
 namespace {
@@ -142,6 +144,111 @@ TEST(RasterPipeline, DeterministicAcrossThreadsAndTileSizes) {
             EXPECT_TRUE(vis.depth == reference.depth) << threads << " threads, tile " << tile;
         }
     }
+}
+
+// Triangles around a camera, most of them cut by the near plane (some reach behind the eye):
+// at every covered pixel the window depth is the exact plane through the snapped vertices of
+// the clipped piece that covers it (clip, snap and fan as the primitive stage does them; the
+// plane in long double), to the rounding of the depth offsets (4 ulps of each term of the
+// plane, triangle_setup.h) and, on an edge through the pixel centre, the edge step
+// (DepthPlane::edge_step: 2^-10 pixel of slope). Against the plane of the unsnapped triangle
+// it is off by at most the snapping's reach: the plane's change over half a sub-pixel per
+// axis, (|A| + |B|) / 512 for the exact slopes A, B per pixel (D3D11.3 sets depth up on the
+// snapped positions, so that it orders triangles as their coverage does).
+TEST(RasterPipeline, ClippedTrianglesDepthIsTheSnappedPlane) {
+    const int w = 160, h = 120;
+    const pipeline::Viewport viewport(w, h);
+    Camera camera;  // at the origin looking down -z, near 0.1
+    camera.eye = glm::vec3(0.0f);
+    camera.lookat = {0.0f, 0.0f, -1.0f};
+    camera.aspect = float(w) / float(h);
+    const glm::mat4 vp = camera.view_projection();
+    test::Rng rng(16402);
+    Mesh mesh;
+    for (int t = 0; t < 400; ++t) {
+        const glm::vec3 c((rng.unit() - 0.5f) * 2.0f, (rng.unit() - 0.5f) * 1.2f, -0.3f - rng.unit());
+        const float size = 0.05f + rng.unit();
+        for (int k = 0; k < 3; ++k) {
+            mesh.indices.push_back(uint32_t(mesh.positions.size()));
+            mesh.positions.push_back(c + size * glm::vec3(rng.unit() - 0.5f, rng.unit() - 0.5f, rng.unit() - 0.5f));
+        }
+    }
+    VisibilityBuffer vis;
+    pipeline::Rasterizer().render(mesh, vp, viewport, {}, vis);
+    size_t clipped = 0, checked = 0;
+    double worst_snapped = 0.0, worst_unsnapped = 0.0;
+    for (int y = 0; y < h; ++y)
+        for (int x = 0; x < w; ++x) {
+            const uint32_t id = vis.triangle[size_t(y) * w + x];
+            if (id == kNoTriangle) continue;
+            glm::vec4 clip[3];
+            uint32_t codes = 0;
+            for (int k = 0; k < 3; ++k) {
+                const glm::vec3 p = mesh.positions[mesh.indices[3 * id + k]];
+                pipeline::clip_position(vp, p.x, p.y, p.z, clip[k].x, clip[k].y, clip[k].z, clip[k].w);
+                codes |= pipeline::clip_code(viewport, clip[k].x, clip[k].y, clip[k].z, clip[k].w);
+            }
+            // The unsnapped plane: the null vector L of the clip-space corners, z_ndc =
+            // -(Lx x_ndc + Ly y_ndc + Lw) / Lz, over window positions.
+            long double m[3][4];
+            for (int k = 0; k < 3; ++k) m[k][0] = clip[k].x, m[k][1] = clip[k].y, m[k][2] = clip[k].z, m[k][3] = clip[k].w;
+            const auto minor = [&](int a, int b, int c) {
+                return m[0][a] * (m[1][b] * m[2][c] - m[1][c] * m[2][b]) - m[0][b] * (m[1][a] * m[2][c] - m[1][c] * m[2][a]) +
+                       m[0][c] * (m[1][a] * m[2][b] - m[1][b] * m[2][a]);
+            };
+            const long double lx = minor(1, 2, 3), ly = -minor(0, 2, 3), lz = minor(0, 1, 3), lw = -minor(0, 1, 2);
+            const long double A = -lx / (lz * w), B = ly / (lz * h);  // window depth per pixel
+            const long double unsnapped = 0.5L - (lx * (2.0L * (x + 0.5L) / w - 1.0L) + ly * (1.0L - 2.0L * (y + 0.5L) / h) + lw) / (2.0L * lz);
+            // The piece that covers the pixel, as the primitive stage cuts and snaps it.
+            glm::vec4 polygon[pipeline::kMaxClippedVertices];
+            const int n = codes ? pipeline::clip_triangle(clip, codes, viewport, polygon) : (std::copy(clip, clip + 3, polygon), 3);
+            clipped += codes != 0;
+            pipeline::WindowVertex v[pipeline::kMaxClippedVertices];
+            for (int i = 0; i < n; ++i) v[i] = pipeline::project_and_snap(viewport, polygon[i]);
+            bool found = false;
+            for (int i = 1; i + 1 < n && !found; ++i) {
+                pipeline::TriangleSetup t;
+                if (pipeline::setup_triangle(v[0], v[i], v[i + 1], pipeline::CullMode::none, viewport, t) !=
+                    pipeline::SetupResult::drawn)
+                    continue;
+                if (x < t.minx || x > t.maxx || y < t.miny || y > t.maxy) continue;
+                bool in = true, on_edge = false;
+                for (int e = 0; e < 3; ++e) {
+                    const int64_t f = t.f[e] + int64_t(t.dx[e]) * (y - t.miny) - int64_t(t.dy[e]) * (x - t.minx);
+                    in = in && f >= 0;
+                    on_edge = on_edge || (f == 0 && pipeline::holds_centres(t, e));
+                }
+                if (!in) continue;
+                found = true;
+                const pipeline::WindowVertex* q[3] = {&v[0], &v[i], &v[i + 1]};
+                const auto orient = [&](int a, int b, long double px, long double py) {
+                    return (static_cast<long double>(q[b]->X) - q[a]->X) * (py - q[a]->Y) -
+                           (static_cast<long double>(q[b]->Y) - q[a]->Y) * (px - q[a]->X);
+                };
+                const long double px = x * 256.0L + 128.0L, py = y * 256.0L + 128.0L;
+                const long double snapped = (orient(1, 2, px, py) * q[0]->z + orient(2, 0, px, py) * q[1]->z +
+                                             orient(0, 1, px, py) * q[2]->z) / orient(0, 1, q[2]->X, q[2]->Y);
+                const double dx = double(x - t.depth.ax), dy = double(y - t.depth.ay);
+                const double slope = std::fabs(t.depth.a) + std::fabs(t.depth.b);
+                const double rounding = 4.0 * 0x1p-24 * (std::fabs(t.depth.a * dx) + std::fabs(t.depth.b * dy) +
+                                                         std::fabs(double(snapped - 1.0L))) + 0x1p-25 +
+                                        (on_edge ? slope * 0x1p-10 : 0.0);
+                const double depth = vis.depth[size_t(y) * w + x];
+                const double off_snapped = std::fabs(depth - double(std::clamp(snapped, 0.0L, 1.0L)));
+                ASSERT_LE(off_snapped, rounding) << "pixel (" << x << ", " << y << "), triangle " << id;
+                const double reach = double((std::fabs(A) + std::fabs(B)) / 512.0L) * 1.001 + rounding + 1e-7;
+                const double off_unsnapped = std::fabs(depth - double(std::clamp(unsnapped, 0.0L, 1.0L)));
+                ASSERT_LE(off_unsnapped, reach) << "pixel (" << x << ", " << y << "), triangle " << id;
+                worst_snapped = std::max(worst_snapped, off_snapped);
+                worst_unsnapped = std::max(worst_unsnapped, off_unsnapped);
+            }
+            ASSERT_TRUE(found) << "pixel (" << x << ", " << y << "): no piece of triangle " << id << " covers it";
+            ++checked;
+        }
+    EXPECT_GT(checked, size_t(w * h * 9 / 10));
+    EXPECT_GT(clipped, checked / 2);
+    RecordProperty("worst_vs_snapped_plane", std::to_string(worst_snapped));
+    RecordProperty("worst_vs_unsnapped_plane", std::to_string(worst_unsnapped));
 }
 
 // A depth-only render (shadow maps) gives the full render's depth, writes no ids, and takes

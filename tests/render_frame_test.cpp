@@ -17,6 +17,7 @@
 #include "raster/scene_file/scene_build.h"
 #include "raster/scene_file/scene_parse.h"
 #include "raster/core/trace.h"
+#include "raster/workloads/test_meshes.h"
 
 namespace fs = std::filesystem;
 using namespace tessera;
@@ -118,6 +119,80 @@ const char* kGlass = R"({
     {"type": "sphere", "material": "blue", "radius": 0.4, "tessellation": [24, 12], "centre": [1.6, -0.5, 0.8]}
   ]
 })";
+
+// A sliver thinner than the snapping's reach: its vertex V lies 0.4 sub-pixel right of and
+// below the centre of pixel (20, 15) and snaps onto it, A and B lie on the sub-pixel grid, and
+// A - V, B - V are nearly opposite. Unsnapped it is clockwise in NDC (twice its area +17.2
+// sub-pixels^2: a back face), snapped counter-clockwise (-58: a front face), and it covers
+// the pixel centre through V (top-left rule). Its normals follow its world winding, away from
+// the eye, and the light shines along them: lit from the side the rasterizer drew, ka La +
+// kd Le = 1; lit as the back face its world position shows, only ambient, 0.25.
+TEST(RenderFrame, SliverTurnedOverBySnappingIsLitFromTheSideItWasDrawn) {
+    const int w = 40, h = 30;
+    scene::Scene s;
+    s.camera.aspect = float(w) / float(h);
+    const glm::vec2 centre(20.5f, 15.5f);
+    workloads::WindowMesh window;
+    for (const glm::vec2 d : {glm::vec2(0.4f, 0.4f), glm::vec2(-30.0f, 7.0f), glm::vec2(124.0f, -27.0f)})
+        window.positions.push_back({centre + d / 256.0f, 0.5f});
+    window.indices = {0, 1, 2};
+    auto mesh = std::make_shared<Mesh>(workloads::to_world(window, s.camera.view_projection(), w, h));
+    const glm::dvec3 p0 = mesh->positions[0], p1 = mesh->positions[1], p2 = mesh->positions[2];
+    const glm::vec3 normal = glm::normalize(glm::cross(p1 - p0, p2 - p0));
+    EXPECT_LT(glm::dot(glm::dvec3(normal), glm::dvec3(s.camera.eye) - p0), 0.0) << "a back face in world space";
+    mesh->normals.assign(3, normal);
+    s.lights = {scene::directional_light(normal, glm::vec3(0.25f), glm::vec3(0.75f))};
+    scene::Material m;
+    m.ka = m.kd = glm::vec3(1.0f);
+    m.ks = glm::vec3(0.0f);
+    s.materials = {m};
+    s.background.colour = glm::vec3(0.0f);
+    s.objects = {{"sliver", mesh, 0, {}, {}}};
+    render::AnimatedScene scene = render::still_scene(std::move(s));
+    render::FrameRenderer renderer(scene, w, h, render::RendererKind::raster, render::ShadowMode::none);
+    const Frame f = renderer.render(0.0f);
+    EXPECT_NEAR(f.at(20, 15).r, 1.0f, 1e-5f);
+    float elsewhere = 0.0f;  // the sliver covers no other pixel centre
+    for (int y = 0; y < h; ++y)
+        for (int x = 0; x < w; ++x)
+            if (x != 20 || y != 15) elsewhere = std::max(elsewhere, f.at(x, y).r);
+    EXPECT_EQ(elsewhere, 0.0f);
+}
+
+// A rough heightfield seen at a grazing angle, lit from straight above with no ambient and no
+// specular term: every front face has N.L > 0 and shows some red, every back face (lit as its
+// underside) is black. A heightfield seen from above shows no back face, and the rays find
+// none; the raster must not either. Its silhouettes are folds where a back face meets the
+// front face that hides it, sharing an edge and, next to it, nearly its depth; the near plane
+// at 0.01 crowds window depth against 1 (z = 1 - 0.01/d), where such pairs round to the same
+// value (triangle_setup.h). Grid sizes 101^2 .. 301^2: the specks move but do not go away.
+TEST(RenderFrame, RasterShowsNoBackFaceOfAHeightfieldWhereRaysShowNone) {
+    for (int samples : {101, 201, 301}) {
+        const std::string json = R"({
+          "camera": {"eye": [0, 1.2, 8], "lookat": [0, 0.2, 0], "fov": 40, "near": 0.01, "far": 100},
+          "background": {"type": "colour", "colour": [0.2, 0.3, 0.9]},
+          "lights": [{"direction": [0, 1, 0], "La": [0, 0, 0], "Le": [1, 1, 1]}],
+          "materials": {"ground": {"model": "phong", "kd": [0.5, 0.5, 0.5], "ks": [0, 0, 0]}},
+          "objects": [{"type": "heightfield", "material": "ground", "relief": "fbm", "cells": 6, "octaves": 8,
+                       "samples": [)" + std::to_string(samples) + ", " + std::to_string(samples) + R"(],
+                       "size": [20, 20], "height": 1.5, "transform": {"translate": [0, -1.2, 0]}}]
+        })";
+        const int w = 320, h = 180;
+        size_t unlit[2] = {0, 0};
+        for (render::RendererKind r : {render::RendererKind::raster, render::RendererKind::raytrace}) {
+            const Frame f = render_scene(json, w, h, r, render::ShadowMode::none);
+            for (int y = 0; y < h; ++y)
+                for (int x = 0; x < w; ++x)
+                    if (f.at(x, y).r == 0.0f) {
+                        ++unlit[r == render::RendererKind::raytrace];
+                        ADD_FAILURE() << samples << "^2 samples, " << (r == render::RendererKind::raster ? "raster" : "rays")
+                                      << ": pixel (" << x << ", " << y << ") shows a back face";
+                    }
+        }
+        EXPECT_EQ(unlit[0], 0u) << samples << "^2 samples, raster";
+        EXPECT_EQ(unlit[1], 0u) << samples << "^2 samples, rays";
+    }
+}
 
 TEST(RenderFrame, RayCastBlendsTransparencyAsTheRasterizerDoes) {
     const int w = 160, h = 120;

@@ -38,7 +38,7 @@ void multisampled_tile(TileBuffers& buffers, const TileRect& rect, VisibilityBuf
     layers.build(rect, buffers.samples, sample_positions(buffers.samples), [&](int x, int y, int s, uint32_t& triangle, float& depth) {
         const size_t i = size_t(s) * plane + buffers.index(x - rect.x0, y - rect.y0);
         triangle = buffers.triangle[i];
-        depth = buffers.depth[i];
+        depth = window_depth(buffers.depth[i]);
     });
     if (keep_samples)
         for (int y = rect.y0; y < rect.y1; ++y)
@@ -46,7 +46,7 @@ void multisampled_tile(TileBuffers& buffers, const TileRect& rect, VisibilityBuf
                 for (int s = 0; s < buffers.samples; ++s) {
                     const size_t i = size_t(s) * plane + buffers.index(x - rect.x0, y - rect.y0);
                     visibility.sample_triangle[visibility.sample_index(x, y, s)] = buffers.triangle[i];
-                    visibility.sample_depth[visibility.sample_index(x, y, s)] = buffers.depth[i];
+                    visibility.sample_depth[visibility.sample_index(x, y, s)] = window_depth(buffers.depth[i]);
                 }
     const Tile primary = layers.layer(0, glm::vec4(0.0f));
     for (int y = rect.y0; y < rect.y1; ++y)

@@ -21,6 +21,9 @@ using simd::vmask;
 constexpr int kBlock = 16;  // block edge for big triangles (int32-exact up to 64, fixed_point.h)
 constexpr int kTinyExtent = 32;  // pixels: a small triangle's region under this is visited branch-free
 
+// A value the reduced edge function F never takes (|F| < 2^25 in int32 lanes, fixed_point.h).
+constexpr int32_t kNever = INT32_MIN;
+
 // One edge function in the lanes of a stamp: F at the stamp's corner pixel (scalar), the lane
 // offsets F(corner + lane) - F(corner), and the steps between stamps.
 struct EdgeLanes {
@@ -30,6 +33,14 @@ struct EdgeLanes {
     bool accepted;  // inside over the whole region, at every sample
 };
 
+// For a triangle whose edges may run through pixel centres (holds_centres()): per edge, the F
+// at which a lane lies exactly on it (0, or kNever for an edge that holds none or is accepted
+// over the region) and its depth step (DepthPlane::edge_step()).
+struct OnEdge {
+    int32_t f[3];
+    float step[3];
+};
+
 EdgeLanes edge_lanes(int32_t f, int32_t dx, int32_t dy) {
     return {f, -dy * kStampW, dx * kStampH, simd::stamp_x() * vint(-dy) + simd::stamp_y() * vint(dx), false};
 }
@@ -37,18 +48,20 @@ EdgeLanes edge_lanes(int32_t f, int32_t dx, int32_t dy) {
 // An edge that is inside over the whole region: F = 0 everywhere passes "F >= 0".
 EdgeLanes accepted_edge() { return {0, 0, 0, vint(0), true}; }
 
+
 // Visits the stamps with corners (sx, sy), sx0 <= sx <= sx1, sy0 <= sy <= sy1 (stamp-aligned,
-// frame coordinates): coverage from the three edges, depth from the plane. sink(index of the
-// stamp in the tile buffers, corner x, corner y, coverage, depth).
+// frame coordinates): coverage from the three edges, depth offset from the plane (with
+// kOnEdge, plus the edge's step where a lane lies exactly on it: depth_offset()). sink(index
+// of the stamp in the tile buffers, corner x, corner y, coverage, depth offset).
 //
 // kBranchless: the sink also gets stamps with no coverage (its masked stores then write
 // nothing), and rows are not left early. For the few stamps of a small region this is
 // faster than predicting "any lane covered" and the row exits, which mispredict often
 // (sphere grid at 1080p, 1 thread, CPU time per frame: 16k triangles 3.4 -> 2.4 ms, 100k
 // 8.2 -> 5.9 ms; regions up to 16 pixels gave 3.2 and 6.0 ms, up to 64 the same as 32).
-template <bool kBranchless, class Sink>
-inline void traverse_stamps(const DepthPlane& plane, const EdgeLanes (&e)[3], int sx0, int sy0, int sx1,
-                            int sy1, const TileRect& tile, int tile_size, Sink&& sink) {
+template <bool kBranchless, bool kOnEdge, class Sink>
+inline void traverse_stamps(const DepthPlane& plane, const EdgeLanes (&e)[3], const OnEdge* on, int sx0, int sy0,
+                            int sx1, int sy1, const TileRect& tile, int tile_size, Sink&& sink) {
     const vfloat lane_x = simd::to_float(simd::stamp_x());
     const vfloat lane_y = simd::to_float(simd::stamp_y());
     const vfloat a(plane.a), b(plane.b), c(plane.c);
@@ -62,7 +75,7 @@ inline void traverse_stamps(const DepthPlane& plane, const EdgeLanes (&e)[3], in
     const vint zero(0);
     const unsigned stamps_per_row = unsigned(tile_size / kStampW);
     for (int sy = sy0; sy <= sy1; sy += kStampH) {
-        // DepthPlane::at: fma(a, x - ax, fma(b, y - ay, c)), x - ax and y - ay exact in float.
+        // DepthPlane::offset_at: fma(a, x - ax, fma(b, y - ay, c)), x - ax and y - ay exact in float.
         const vfloat z_row = simd::fma(b, vfloat(float(sy - plane.ay)) + lane_y, c);
         vint f0 = row0, f1 = row1, f2 = row2;
         float fx = float(sx0 - plane.ax);
@@ -72,7 +85,12 @@ inline void traverse_stamps(const DepthPlane& plane, const EdgeLanes (&e)[3], in
             const vmask covered = (f0 | f1 | f2) >= zero;
             if (kBranchless || simd::any(covered)) {
                 vfloat z = simd::fma(a, vfloat(fx) + lane_x, z_row);
-                z = simd::min(simd::max(z, vfloat(0.0f)), vfloat(1.0f));
+                if constexpr (kOnEdge) {
+                    z = simd::select(f0 == vint(on->f[0]), z + vfloat(on->step[0]), z);
+                    z = simd::select(f1 == vint(on->f[1]), z + vfloat(on->step[1]), z);
+                    z = simd::select(f2 == vint(on->f[2]), z + vfloat(on->step[2]), z);
+                }
+                z = simd::min(simd::max(z, vfloat(-1.0f)), vfloat(0.0f));
                 sink(index, sx, sy, covered, z);
             } else if ((exit0 && !simd::any(f0 >= zero)) || (exit1 && !simd::any(f1 >= zero)) ||
                        (exit2 && !simd::any(f2 >= zero))) {
@@ -103,7 +121,7 @@ inline void fill_stamps(const DepthPlane& plane, int sx0, int sy0, int sx1, int 
         size_t index = (unsigned(sy - tile.y0) / kStampH * stamps_per_row + unsigned(sx0 - tile.x0) / kStampW) * kLanes;
         for (int sx = sx0; sx <= sx1; sx += kStampW, index += kLanes, fx += float(kStampW)) {
             vfloat z = simd::fma(a, vfloat(fx) + lane_x, z_row);
-            z = simd::min(simd::max(z, vfloat(0.0f)), vfloat(1.0f));
+            z = simd::min(simd::max(z, vfloat(-1.0f)), vfloat(0.0f));
             sink(index, sx, sy, all, z);
         }
     }
@@ -117,6 +135,12 @@ struct SampleLanes {
     int32_t offset[3][kMaxSamples];
     int32_t lo[3], hi[3];
     float ox[kMaxSamples], oy[kMaxSamples];
+    // Per edge and sample: the F (before the sample's offset) at which the sample lies exactly
+    // on the edge, -offset, when such samples exist (holds_sample()), else kNever; and the
+    // edge's depth step. edge_holds: bit i when edge i has any.
+    int32_t on_edge[3][kMaxSamples];
+    float step[3];
+    unsigned edge_holds = 0;
 
     SampleLanes(const TriangleSetup& t, std::span<const SampleOffset> pattern) : count(int(pattern.size())) {
         for (int i = 0; i < 3; ++i) {
@@ -125,7 +149,11 @@ struct SampleLanes {
                 offset[i][s] = sample_offset(t, i, pattern[s].x, pattern[s].y);
                 lo[i] = std::min(lo[i], offset[i][s]);
                 hi[i] = std::max(hi[i], offset[i][s]);
+                const bool holds = holds_sample(t, i, pattern[s].x, pattern[s].y);
+                on_edge[i][s] = holds ? -offset[i][s] : kNever;
+                edge_holds |= unsigned(holds) << i;
             }
+            step[i] = (edge_holds >> i) & 1 ? t.depth.edge_step(t.dx[i], t.dy[i]) : 0.0f;
         }
         for (int s = 0; s < count; ++s) {
             ox[s] = float(pattern[s].x) * (1.0f / 16.0f);
@@ -135,9 +163,11 @@ struct SampleLanes {
 };
 
 // traverse_stamps for several samples per pixel: coverage per sample from the edge values
-// moved by the sample's offsets, depth from the plane at the sample. sink(index of the stamp,
-// corner x, corner y, sample, coverage, depth) per sample of a stamp with any coverage.
-template <bool kBranchless, class Sink>
+// moved by the sample's offsets, depth offset from the plane at the sample (with kOnEdge, plus
+// the edge's step where the sample lies exactly on it: depth_offset_at_sample()). sink(index
+// of the stamp, corner x, corner y, sample, coverage, depth offset) per sample of a stamp with
+// any coverage.
+template <bool kBranchless, bool kOnEdge, class Sink>
 inline void traverse_sample_stamps(const DepthPlane& plane, const EdgeLanes (&e)[3], const SampleLanes& samples,
                                    int sx0, int sy0, int sx1, int sy1, const TileRect& tile, int tile_size,
                                    Sink&& sink) {
@@ -175,7 +205,13 @@ inline void traverse_sample_stamps(const DepthPlane& plane, const EdgeLanes (&e)
                 for (int s = 0; s < n; ++s) {
                     // DepthPlane::at_sample: x - ax + ox, y - ay + oy, exact in float.
                     vfloat z = simd::fma(a, x + vfloat(samples.ox[s]), simd::fma(b, y_row + vfloat(samples.oy[s]), c));
-                    z = simd::min(simd::max(z, vfloat(0.0f)), vfloat(1.0f));
+                    if constexpr (kOnEdge) {
+                        // An accepted edge is never one with samples on it (traverse()).
+                        z = simd::select(f0 == vint(samples.on_edge[0][s]), z + vfloat(samples.step[0]), z);
+                        z = simd::select(f1 == vint(samples.on_edge[1][s]), z + vfloat(samples.step[1]), z);
+                        z = simd::select(f2 == vint(samples.on_edge[2][s]), z + vfloat(samples.step[2]), z);
+                    }
+                    z = simd::min(simd::max(z, vfloat(-1.0f)), vfloat(0.0f));
                     sink(index, sx, sy, s, covered[s], z);
                 }
             } else if ((exit0 && !simd::any((f0 + hi0) >= zero)) || (exit1 && !simd::any((f1 + hi1) >= zero)) ||
@@ -209,7 +245,7 @@ inline void fill_sample_stamps(const DepthPlane& plane, const SampleLanes& sampl
             const vfloat x = vfloat(fx) + lane_x;
             for (int s = 0; s < samples.count; ++s) {
                 vfloat z = simd::fma(a, x + vfloat(samples.ox[s]), simd::fma(b, y_row + vfloat(samples.oy[s]), c));
-                z = simd::min(simd::max(z, vfloat(0.0f)), vfloat(1.0f));
+                z = simd::min(simd::max(z, vfloat(-1.0f)), vfloat(0.0f));
                 sink(index, sx, sy, s, all, z);
             }
         }
@@ -222,19 +258,32 @@ int64_t edge_at(const TriangleSetup& t, int i, int x, int y) {
 }
 
 // Traverses the part of triangle `t` inside `tile`, calling sink as traverse_stamps does, or,
-// with `samples` (multisampling), as traverse_sample_stamps does.
-template <bool kMulti, class Sink>
-inline void traverse(const TriangleSetup& t, const TileRect& tile, int tile_size, const SampleLanes* samples,
-                     Sink&& sink) {
+// with `samples` (multisampling), as traverse_sample_stamps does. kOnEdge: some edge of `t`
+// may hold samples exactly (holds_centres(), holds_sample(); rare), whose lanes read the depth
+// step there and on which a block is accepted whole only where F > 0.
+template <bool kMulti, bool kOnEdge, class Sink>
+inline void traverse_with(const TriangleSetup& t, const TileRect& tile, int tile_size, const SampleLanes* samples,
+                          Sink&& sink) {
     const int x0 = std::max<int>(t.minx, tile.x0), x1 = std::min<int>(t.maxx, tile.x1 - 1);
     const int y0 = std::max<int>(t.miny, tile.y0), y1 = std::min<int>(t.maxy, tile.y1 - 1);
     if (x0 > x1 || y0 > y1) return;
     const int sx0 = x0 & ~(kStampW - 1), sy0 = y0 & ~(kStampH - 1);
+    const unsigned holds = kOnEdge ? (kMulti ? samples->edge_holds : t.on_edge) : 0u;
     const auto partial = [&]<bool kBranchless>(const EdgeLanes (&lanes)[3], int px0, int py0, int px1, int py1) {
-        if constexpr (kMulti)
-            traverse_sample_stamps<kBranchless>(t.depth, lanes, *samples, px0, py0, px1, py1, tile, tile_size, sink);
-        else
-            traverse_stamps<kBranchless>(t.depth, lanes, px0, py0, px1, py1, tile, tile_size, sink);
+        if constexpr (kMulti) {
+            traverse_sample_stamps<kBranchless, kOnEdge>(t.depth, lanes, *samples, px0, py0, px1, py1, tile,
+                                                         tile_size, sink);
+        } else if constexpr (kOnEdge) {
+            OnEdge on;
+            for (int i = 0; i < 3; ++i) {
+                const bool here = (holds >> i) & 1 && !lanes[i].accepted;
+                on.f[i] = here ? 0 : kNever;
+                on.step[i] = here ? t.depth.edge_step(t.dx[i], t.dy[i]) : 0.0f;
+            }
+            traverse_stamps<kBranchless, true>(t.depth, lanes, &on, px0, py0, px1, py1, tile, tile_size, sink);
+        } else {
+            traverse_stamps<kBranchless, false>(t.depth, lanes, nullptr, px0, py0, px1, py1, tile, tile_size, sink);
+        }
     };
     if (t.small) {
         // Small triangle: int32 is exact anywhere within a few pixels of its box, F at
@@ -266,7 +315,7 @@ inline void traverse(const TriangleSetup& t, const TileRect& tile, int tile_size
                 const int64_t hi = f + std::max<int64_t>(0, -dy) * kSpan + std::max<int64_t>(0, dx) * kSpan +
                                    (kMulti ? samples->hi[i] : 0);
                 if (hi < 0) rejected = true;
-                else if (lo >= 0) lanes[i] = accepted_edge(), full[i] = true;
+                else if (lo >= (kOnEdge && (holds >> i) & 1 ? 1 : 0)) lanes[i] = accepted_edge(), full[i] = true;
                 else lanes[i] = edge_lanes(int32_t(edge_at(t, i, px0, py0)), t.dx[i], t.dy[i]);
             }
             if (rejected) continue;
@@ -281,6 +330,15 @@ inline void traverse(const TriangleSetup& t, const TileRect& tile, int tile_size
     }
 }
 
+template <bool kMulti, class Sink>
+inline void traverse(const TriangleSetup& t, const TileRect& tile, int tile_size, const SampleLanes* samples,
+                     Sink&& sink) {
+    if ((kMulti ? samples->edge_holds : t.on_edge) != 0)
+        traverse_with<kMulti, true>(t, tile, tile_size, samples, sink);
+    else
+        traverse_with<kMulti, false>(t, tile, tile_size, samples, sink);
+}
+
 }  // namespace
 
 void TileBuffers::clear(int tile_size, int sample_count) {
@@ -289,10 +347,9 @@ void TileBuffers::clear(int tile_size, int sample_count) {
     const size_t n = size_t(tile_size) * size_t(tile_size) * size_t(sample_count);
     depth.resize(n);
     triangle.resize(n);
-    const vfloat one(1.0f);
     const vint none(int32_t(0xFFFFFFFFu));
     for (size_t i = 0; i < n; i += kLanes) {
-        one.store(&depth[i]);
+        vfloat(0.0f).store(&depth[i]);  // depth offset of the far plane
         none.store(reinterpret_cast<int32_t*>(&triangle[i]));
     }
 }
@@ -301,7 +358,9 @@ namespace {
 
 // One array of a tile (stamp layout, `size` pixels a side) to row-major `out`, kStampH rows
 // at a time through `rows_buffer` (kStampH x size values). Every group of stamps is reset to
-// `empty` as it is read (the data is in L1 then: cheaper than a separate clear pass).
+// `empty` as it is read (the data is in L1 then: cheaper than a separate clear pass). With
+// kDepth the values are depth offsets and leave as window depth (window_depth()).
+template <bool kDepth>
 void flush_rows(uint32_t* tile, int size, int width, int height, uint32_t* out, size_t stride,
                 uint32_t empty, bool stream, uint32_t* rows_buffer) {
     const size_t stamps_per_row = size_t(size / kStampW);
@@ -313,6 +372,11 @@ void flush_rows(uint32_t* tile, int size, int width, int height, uint32_t* out, 
             int32_t* group = reinterpret_cast<int32_t*>(stamps + size_t(x / kStampW) * kLanes);
             simd::store_stamp_rows(reinterpret_cast<uint32_t*>(group), rows_buffer + x, size_t(size), kStampH);
             for (int s = 0; s < kStampH; ++s) cleared.store(group + s * kLanes);
+        }
+        if constexpr (kDepth) {
+            float* rows = reinterpret_cast<float*>(rows_buffer);
+            for (size_t i = 0; i < size_t(kStampH) * size_t(size); i += kLanes)
+                (vfloat::load(rows + i) + vfloat(1.0f)).store(rows + i);  // window_depth()
         }
         const int rows = std::min(kStampH, height - y);
         for (int r = 0; r < rows; ++r) {
@@ -338,10 +402,10 @@ void TileBuffers::flush(int width, int height, uint32_t* triangle_out, float* de
     // One array after the other: interleaving the two doubles the write streams in flight,
     // which measured 2x slower than two sequential passes.
     if (triangle_out)
-        flush_rows(triangle.data(), size, width, height, triangle_out, stride, kNoTriangle, stream, rows.data());
-    flush_rows(reinterpret_cast<uint32_t*>(depth.data()), size, width, height,
-               reinterpret_cast<uint32_t*>(depth_out), stride, std::bit_cast<uint32_t>(1.0f), stream,
-               rows.data());
+        flush_rows<false>(triangle.data(), size, width, height, triangle_out, stride, kNoTriangle, stream, rows.data());
+    flush_rows<true>(reinterpret_cast<uint32_t*>(depth.data()), size, width, height,
+                     reinterpret_cast<uint32_t*>(depth_out), stride, std::bit_cast<uint32_t>(0.0f), stream,
+                     rows.data());
     if (stream) simd::stream_fence();
     // A partial tile leaves stamp rows below `height` uncopied and uncleared (and traversal
     // may have covered lanes past the viewport's edge): clear it all.
@@ -393,7 +457,7 @@ size_t rasterize_tested(const TriangleSetup& t, const TileRect& tile, const floa
     size_t n = 0;
     const int tile_size = 1 << 8;  // any stamp-aligned width works: indices are unused here
     traverse<false>(t, tile, tile_size, nullptr, [&](size_t, int sx, int sy, vmask covered, vfloat z) {
-        z.store(z_lanes);
+        (z + vfloat(1.0f)).store(z_lanes);  // window_depth(), as `depth` holds
         for (uint32_t bits = simd::bits(covered); bits; bits &= bits - 1) {
             const int lane = std::countr_zero(bits);
             const int x = sx + lane % kStampW, y = sy + lane / kStampW;

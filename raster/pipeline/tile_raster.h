@@ -17,17 +17,18 @@ namespace tessera::pipeline {
 // A tile's depth and triangle ids, small enough to stay in L1/L2 while every triangle of the
 // tile is drawn. Stamp-swizzled: the kLanes pixels of one stamp are contiguous (one aligned
 // vector), stamps in row-major order. Multisampled (samples > 1, sample_pattern.h): one such
-// plane per sample, sample s at s * plane().
+// plane per sample, sample s at s * plane(). Depth is held as the depth offset z - 1 that the
+// test compares (triangle_setup.h; window_depth() turns it back), 0 where nothing was drawn.
 struct TileBuffers {
     int size = 0;
     int samples = 1;
-    AlignedVector<float> depth;
+    AlignedVector<float> depth;  // depth offsets
     AlignedVector<uint32_t> triangle;
     AlignedVector<uint32_t> rows;  // flush(): kStampH rows of the tile in row-major order
 
-    void clear(int tile_size, int sample_count = 1);  // depth 1.0, no triangle
+    void clear(int tile_size, int sample_count = 1);  // depth offset 0 (window depth 1), no triangle
     size_t plane() const { return size_t(size) * size_t(size); }
-    // Copies the tile's pixels [0, width) x [0, height) to row-major triangle / depth arrays
+    // Copies the tile's pixels [0, width) x [0, height) to row-major triangle / window depth arrays
     // with `stride` elements per row (pointing at the tile's first pixel; triangle_out null:
     // depth only, the ids were not written), and leaves the
     // buffers cleared for the next tile of the same size. `stream`: with non-temporal stores

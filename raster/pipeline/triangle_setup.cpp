@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <numeric>
 
 namespace tessera::pipeline {
 
@@ -23,31 +24,79 @@ DepthPlane DepthPlane::from(const WindowVertex& v0, const WindowVertex& v1, cons
     p.ax = int16_t(v0.X >> kSubpixelBits);  // the pixel that holds vertex 0 (floor)
     p.ay = int16_t(v0.Y >> kSubpixelBits);
     if (det == 0.0) {  // never traversed (zero area), but keep the plane finite
-        p.c = v0.z;
+        p.c = float(double(v0.z) - 1.0);
         return p;
     }
     const double inv_det = 1.0 / det;
     const double a = (z1 * y2 - z2 * y1) * inv_det;
     const double b = (x1 * z2 - x2 * z1) * inv_det;
-    // Depth at the anchor pixel's centre.
+    // Depth offset at the anchor pixel's centre, rounded once: z_0 - 1 is exact in double.
     const double cx = (double(p.ax) + 0.5) - double(v0.X) / kSubpixels;
     const double cy = (double(p.ay) + 0.5) - double(v0.Y) / kSubpixels;
     p.a = float(a);
     p.b = float(b);
-    p.c = float(double(v0.z) + a * cx + b * cy);
+    p.c = float((double(v0.z) - 1.0) + a * cx + b * cy);
     return p;
 }
 
-float DepthPlane::at(int x, int y) const {
+float DepthPlane::offset_at(int x, int y) const {
     const float z = std::fma(a, float(x - ax), std::fma(b, float(y - ay), c));
-    return std::min(std::max(z, 0.0f), 1.0f);
+    return std::min(std::max(z, -1.0f), 0.0f);
 }
 
-float DepthPlane::at_sample(int x, int y, int ox, int oy) const {
+float DepthPlane::offset_at_sample(int x, int y, int ox, int oy) const {
     const float fx = float(x - ax) + float(ox) * (1.0f / 16.0f);
     const float fy = float(y - ay) + float(oy) * (1.0f / 16.0f);
     const float z = std::fma(a, fx, std::fma(b, fy, c));
-    return std::min(std::max(z, 0.0f), 1.0f);
+    return std::min(std::max(z, -1.0f), 0.0f);
+}
+
+float DepthPlane::edge_step(int32_t dX, int32_t dY) const {
+    // |dX|, |dY| <= 2^23: the squares and their sum are exact in double, and sqrt rounds
+    // correctly, so every build computes the same step.
+    const double length = std::sqrt(double(dX) * double(dX) + double(dY) * double(dY));
+    return float(0x1p-10 * (double(a) * -double(dY) + double(b) * double(dX)) / length);
+}
+
+namespace {
+
+// F_i at pixel (x, y), from the setup's value at (minx, miny); exact in int64.
+int64_t edge_at(const TriangleSetup& t, int i, int x, int y) {
+    return t.f[i] + int64_t(t.dx[i]) * (y - t.miny) - int64_t(t.dy[i]) * (x - t.minx);
+}
+
+// Whether dX y - dY x = -K / 256 has integer solutions, for K a multiple of 256.
+bool line_meets_centres(int32_t dX, int32_t dY, int64_t k_over_256) {
+    const int64_t g = std::gcd(int64_t(dX), int64_t(dY));
+    return g != 0 && k_over_256 % g == 0;
+}
+
+}  // namespace
+
+bool holds_sample(const TriangleSetup& t, int i, int ox, int oy) {
+    if (!is_top_left(t.dx[i], t.dy[i])) return false;
+    const int64_t k = int64_t(t.residue[i]) + 16 * (int64_t(t.dx[i]) * oy - int64_t(t.dy[i]) * ox);
+    if ((k & (kSubpixels - 1)) != 0) return false;
+    // K >> 8 from F at the box corner (setup_triangle), then the sample's whole part.
+    const int64_t whole = t.f[i] - int64_t(t.dx[i]) * t.miny + int64_t(t.dy[i]) * t.minx + (k >> kSubpixelBits);
+    return line_meets_centres(t.dx[i], t.dy[i], whole);
+}
+
+float depth_offset(const TriangleSetup& t, int x, int y) {
+    float z = std::fma(t.depth.a, float(x - t.depth.ax), std::fma(t.depth.b, float(y - t.depth.ay), t.depth.c));
+    for (int i = 0; i < 3; ++i)
+        if (holds_centres(t, i) && edge_at(t, i, x, y) == 0) z = z + t.depth.edge_step(t.dx[i], t.dy[i]);
+    return std::min(std::max(z, -1.0f), 0.0f);
+}
+
+float depth_offset_at_sample(const TriangleSetup& t, int x, int y, int ox, int oy) {
+    const float fx = float(x - t.depth.ax) + float(ox) * (1.0f / 16.0f);
+    const float fy = float(y - t.depth.ay) + float(oy) * (1.0f / 16.0f);
+    float z = std::fma(t.depth.a, fx, std::fma(t.depth.b, fy, t.depth.c));
+    for (int i = 0; i < 3; ++i)
+        if (holds_sample(t, i, ox, oy) && edge_at(t, i, x, y) + sample_offset(t, i, ox, oy) == 0)
+            z = z + t.depth.edge_step(t.dx[i], t.dy[i]);
+    return std::min(std::max(z, -1.0f), 0.0f);
 }
 
 SetupResult setup_triangle(const WindowVertex& v0, const WindowVertex& v1_in,
@@ -77,12 +126,22 @@ SetupResult setup_triangle(const WindowVertex& v0, const WindowVertex& v1_in,
     // E(P) = dX*(Py - Ya) - dY*(Px - Xa) at P = (256x + 128, 256y + 128) equals
     // 256*(dX*y - dY*x) + K. Inside: E > 0, or E == 0 on a top/left edge, i.e.
     // E - 1 + tl >= 0, i.e. (dX*y - dY*x) + floor((K - 1 + tl) / 256) >= 0 (>> floors).
+    unsigned on_edge = 0;  // TriangleSetup::on_edge
     auto edge = [&](int i, const WindowVertex& a, const WindowVertex& b) {
         const int32_t dX = b.X - a.X, dY = b.Y - a.Y;
         const int64_t K = int64_t(dX) * (kSubpixels / 2 - a.Y) - int64_t(dY) * (kSubpixels / 2 - a.X) -
                           (is_top_left(dX, dY) ? 0 : 1);
         out.f[i] = int64_t(dX) * miny - int64_t(dY) * minx + (K >> kSubpixelBits);
         out.residue[i] = uint8_t(K & (kSubpixels - 1));
+        // holds_centres(): a top-left edge (K is then E's constant part, no bias) whose line
+        // meets the centres' lattice: along a row or column, when that row or column is one
+        // of centres; otherwise by Bezout.
+        if ((K & (kSubpixels - 1)) == 0 && is_top_left(dX, dY)) {
+            const bool meets = dY == 0   ? (a.Y & (kSubpixels - 1)) == kSubpixels / 2
+                               : dX == 0 ? (a.X & (kSubpixels - 1)) == kSubpixels / 2
+                                         : line_meets_centres(dX, dY, K >> kSubpixelBits);
+            on_edge |= unsigned(meets) << i;
+        }
         out.dx[i] = dX;
         out.dy[i] = dY;
     };
@@ -96,6 +155,7 @@ SetupResult setup_triangle(const WindowVertex& v0, const WindowVertex& v1_in,
     out.maxy = int16_t(maxy);
     out.small = (xmax - xmin) < kSmallExtent && (ymax - ymin) < kSmallExtent;
     out.transparent = 0;
+    out.on_edge = uint8_t(on_edge);
     return SetupResult::drawn;
 }
 

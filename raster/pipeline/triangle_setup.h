@@ -22,20 +22,47 @@ struct WindowVertex {
 // vertex stage (same float operations, round to nearest even).
 WindowVertex project_and_snap(const Viewport& viewport, const glm::vec4& clip);
 
-// Window depth as a plane over pixel centres, anchored at pixel (ax, ay):
-//   z(x, y) = clamp(fma(a, x - ax, fma(b, y - ay, c)), 0, 1)
+// Window depth z as the rasterizer's tile buffers hold and compare it: the depth offset
+// z - 1, in [-1, 0]. Perspective crowds window depth against 1 (z = 1 - n/d for the far plane
+// at infinity, n the near plane, d the distance), where floats are 2^-24 = 6e-8 apart: with
+// n = 0.1, two surfaces 10 units away whose depths differ by 1e-8 store the same z, and the
+// depth test keeps whichever came first. Floats are dense near 0, so z - 1 = -n/d keeps 24
+// bits of n/d at every distance: the reversed-Z argument (Lapidous & Jiao, "Optimal depth
+// buffer for low-cost graphics hardware", 1999), in the form that keeps the test LESS and
+// the clear value simple (0: the far plane).
+inline float window_depth(float offset) { return offset + 1.0f; }
+
+// The depth offset as a plane over pixel centres, anchored at pixel (ax, ay):
+//   offset(x, y) = clamp(fma(a, x - ax, fma(b, y - ay, c)), -1, 0)
 // with x - ax, y - ay converted to float exactly. The plane is set up on the snapped
-// positions (D3D11.3 §3.4.1) in double precision; every path (SIMD tiles, scalar reference)
-// evaluates this same expression, so depths agree to the bit.
+// positions (D3D11.3 §3.4.1) in double precision, so that two triangles sharing an edge agree
+// on it exactly and order themselves next to it as the coverage rule sees them; every path
+// (SIMD tiles, scalar reference) evaluates this same expression, so depths agree to the bit.
 struct DepthPlane {
     float a = 0.0f, b = 0.0f, c = 0.0f;
     int16_t ax = 0, ay = 0;  // |window coordinates| < 2^14 (fixed_point.h)
 
     static DepthPlane from(const WindowVertex& v0, const WindowVertex& v1, const WindowVertex& v2);
-    float at(int x, int y) const;
+    float offset_at(int x, int y) const;
     // At the sample (ox, oy) / 16 pixels from the centre of pixel (x, y) (sample_pattern.h):
     // the same expression with x - ax + ox / 16 and y - ay + oy / 16, still exact in float.
-    float at_sample(int x, int y, int ox, int oy) const;
+    float offset_at_sample(int x, int y, int ox, int oy) const;
+    // Window depth: window_depth() of the above.
+    float at(int x, int y) const { return window_depth(offset_at(x, y)); }
+    float at_sample(int x, int y, int ox, int oy) const { return window_depth(offset_at_sample(x, y, ox, oy)); }
+
+    // A sample exactly on an edge (the edge function E is 0 there) belongs to the triangle by
+    // the top-left rule, which decides as if the sample were moved an infinitesimal step into
+    // the triangle. Two triangles that share the edge and lie on the same side of it (a fold
+    // at a silhouette, where a back face meets the front face that hides it) then both cover
+    // the sample, with exactly the same depth: the edge's. Where coverage looked, just inside
+    // the edge, the nearer of the two is the one that hides the other; so a sample on an edge
+    // reads its depth there: the plane's value plus edge_step(dX, dY) of each edge it lies on,
+    // in edge order, before the clamp. The step is 2^-10 pixel along the edge's inward normal
+    // (-dY, dX) / |(dX, dY)|: far above float rounding, well inside the 2^-9 pixel the
+    // snapping itself moves vertices by. Both triangles compute the same normal from the same
+    // (dX, dY), and the step of each is its own slope along it.
+    float edge_step(int32_t dX, int32_t dY) const;
 };
 
 enum class CullMode { none, back, front };  // front faces are counter-clockwise in NDC (GL)
@@ -53,6 +80,7 @@ struct TriangleSetup {
     uint32_t triangle;    // id in the mesh (submission order)
     uint8_t small : 1;        // vertex box < kSmallExtent: int32 traversal anywhere near the box
     uint8_t transparent : 1;  // rasterized after the opaque pass, without depth writes
+    uint8_t on_edge : 3;      // bit i: edge i's line runs through pixel centres (holds_centres())
     // Per edge, K mod 256 for the edge's constant K at the pixel centre (triangle_setup.cpp):
     // what the reduced edge function needs to move exactly to another sample of the pixel
     // (sample_offset()).
@@ -78,6 +106,24 @@ inline int32_t sample_offset(const TriangleSetup& t, int i, int ox, int oy) {
     const int64_t k = int64_t(t.residue[i]) + 16 * (int64_t(t.dx[i]) * oy - int64_t(t.dy[i]) * ox);
     return int32_t(k >> kSubpixelBits);
 }
+
+// Whether samples can lie exactly on edge i of `t`: the edge function at the centre of pixel
+// (x, y) is E = 256 G(x, y) + K with G = dX y - dY x (triangle_setup.cpp), and at the sample
+// (ox, oy) / 16 from it E + 16 (dX oy - dY ox). A covered sample with E = 0 lies on a top-left
+// edge, and E = 0 has integer solutions exactly when the constant part is a multiple of 256
+// whose 256th is a multiple of gcd(dX, dY) (Bezout); then E = 0 is exactly F = 0 (at the
+// sample: F + sample_offset() = 0). Only edges between pixel-centred vertices, edges along a
+// row or column of centres, and a few in 65536 others qualify; the traversal reads
+// DepthPlane::edge_step() only on those. holds_centres() is set up once (TriangleSetup::on_edge).
+inline bool holds_centres(const TriangleSetup& t, int i) { return (t.on_edge >> i) & 1; }
+bool holds_sample(const TriangleSetup& t, int i, int ox, int oy);
+
+// The depth offset `t` writes at the covered centre of pixel (x, y), or at its sample
+// (ox, oy) / 16 pixels away: DepthPlane::offset_at() with DepthPlane::edge_step() of the edges
+// the sample lies on (scalar, from the int64 edge functions; what the SIMD traversal
+// computes in lanes).
+float depth_offset(const TriangleSetup& t, int x, int y);
+float depth_offset_at_sample(const TriangleSetup& t, int x, int y, int ox, int oy);
 
 // D3D11.3 §3.4.2.1 top-left rule for an edge with delta (dX, dY) in top-down window
 // coordinates whose inside lies where dX*(Py - Ya) - dY*(Px - Xa) > 0: a "left" edge goes up

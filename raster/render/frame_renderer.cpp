@@ -122,8 +122,10 @@ struct RegionPasses {
     };
     std::vector<ComputePass> compute;
 
+    // rasterized: the rasterizer's vertices when it finds the region's visibility
+    // (shade::RenderState::rasterized), null for rays.
     RegionPasses(const AnimatedScene& scene, const FrameState& frame, const Region& region,
-                 std::span<const procedural::TerrainField> terrains);
+                 std::span<const procedural::TerrainField> terrains, const pipeline::ClipVertices* rasterized);
 };
 
 struct FrameRenderer::Impl {
@@ -371,8 +373,9 @@ void FrameRenderer::Impl::prepare(float time, FrameState& frame, FrameStats& sta
 }
 
 RegionPasses::RegionPasses(const AnimatedScene& scene, const FrameState& frame, const Region& region,
-                           std::span<const procedural::TerrainField> terrains)
-    : shading(frame.baked, scene.scene, shade::RenderState{region.camera, region.width, region.height, scene.scene.lights}),
+                           std::span<const procedural::TerrainField> terrains, const pipeline::ClipVertices* rasterized)
+    : shading(frame.baked, scene.scene,
+              shade::RenderState{region.camera, region.width, region.height, scene.scene.lights, rasterized}),
       pixel_rays(region.camera.view_projection(), region.width, region.height),
       march_rays(region.camera, region.width, region.height) {
     const scene::Scene& s = scene.scene;
@@ -507,7 +510,8 @@ void FrameRenderer::Impl::render_region(const FrameState& frame, const Region& r
                                         std::vector<glm::vec4>& colour, int rows_from, int rows_to,
                                         FrameStats& stats, Rgba8Target* rgba8) {
     const int w = region.width, h = region.height;
-    const RegionPasses passes(scene, frame, region, terrains);
+    const RegionPasses passes(scene, frame, region, terrains,
+                              renderer == RendererKind::raster ? &rasterizer.clip_vertices() : nullptr);
     std::atomic<uint64_t> shadowed{0};
     const auto in_rows = [&](const TileRect& r) { return r.y1 > rows_from && r.y0 < rows_to; };
 

@@ -86,6 +86,30 @@ FrameShading::FrameShading(const scene::BakedScene& baked, const scene::Scene& s
     });
 }
 
+float FrameShading::drawn_side(uint32_t id) const {
+    if (!state_.rasterized || id >= baked_.mesh.triangle_count()) return 0.0f;
+    const uint32_t* corner = &baked_.mesh.indices[3 * size_t(id)];
+    const pipeline::ClipVertices& v = *state_.rasterized;
+    if (corner[0] >= v.size() || corner[1] >= v.size() || corner[2] >= v.size()) return 0.0f;
+    const pipeline::ProjectedVertex &a = v.projected[corner[0]], &b = v.projected[corner[1]],
+                                    &c = v.projected[corner[2]];
+    if (a.code | b.code | c.code) return 0.0f;
+    // Twice the signed area as triangle setup computes it (window y runs down: < 0 is
+    // counter-clockwise in NDC, the front by winding).
+    const int64_t area2 = int64_t(b.window.X - a.window.X) * (c.window.Y - a.window.Y) -
+                          int64_t(b.window.Y - a.window.Y) * (c.window.X - a.window.X);
+    if (area2 == 0) return 0.0f;  // not drawn
+    const auto l1 = [](const pipeline::WindowVertex& p, const pipeline::WindowVertex& q) {
+        return std::abs(int64_t(q.X) - p.X) + std::abs(int64_t(q.Y) - p.Y);
+    };
+    // First order: half a sub-pixel times the edges' |dX| + |dY| (exact edges, each within one
+    // sub-pixel per axis of the snapped ones: + 3); second order: the cross product of two
+    // moves of at most one sub-pixel per axis: + 2.
+    const int64_t bound = (l1(a.window, b.window) + l1(b.window, c.window) + l1(c.window, a.window) + 6) / 2 + 2;
+    if (std::abs(area2) > bound) return 0.0f;
+    return area2 < 0 ? 1.0f : -1.0f;
+}
+
 bool FrameShading::transparent(uint32_t triangle) const {
     return triangle < baked_.triangle_material.size() &&
            scene_.materials[baked_.triangle_material[triangle]].transparent();
@@ -182,6 +206,7 @@ void FrameShading::shade_with(std::span<const CoveredPixel> pixels, std::span<gl
                     out[order[start + size_t(l)]] = {lanes.out[0][l], lanes.out[1][l], lanes.out[2][l], lanes.out[3][l]};
                 continue;
             }
+            float drawn = 0.0f;
             for (int lane = 0; lane < kLanes; ++lane) {
                 // Idle lanes repeat the first pixel so every lane computes finite values.
                 const CoveredPixel& f = pixels[order[start + size_t(lane < n ? lane : 0)]];
@@ -189,8 +214,10 @@ void FrameShading::shade_with(std::span<const CoveredPixel> pixels, std::span<gl
                 if (f.triangle != setup_for) {
                     setup = pipeline::PerspectiveBarycentrics::from_clip(clip_[corner[0]], clip_[corner[1]],
                                                                clip_[corner[2]], state_.width, state_.height);
+                    drawn = drawn_side(f.triangle);
                     setup_for = f.triangle;
                 }
+                lanes.drawn[lane] = drawn;
                 lanes.x[lane] = float(f.x) + 0.5f;
                 lanes.y[lane] = float(f.y) + 0.5f;
                 for (int k = 0; k < 3; ++k) {
@@ -232,6 +259,7 @@ void FrameShading::fill_lanes(const CoveredPixel* lane_pixel, bool needs_uv, boo
     const Mesh& mesh = baked_.mesh;
     uint32_t setup_for = kNoTriangle;
     pipeline::PerspectiveBarycentrics setup{};
+    float drawn = 0.0f;
     int lane = 0;
     while (lane < kLanes) {
         const uint32_t triangle = lane_pixel[lane].triangle;
@@ -251,8 +279,10 @@ void FrameShading::fill_lanes(const CoveredPixel* lane_pixel, bool needs_uv, boo
         if (triangle != setup_for) {
             setup = pipeline::PerspectiveBarycentrics::from_clip(clip_[corner[0]], clip_[corner[1]], clip_[corner[2]],
                                                                  state_.width, state_.height);
+            drawn = drawn_side(triangle);
             setup_for = triangle;
         }
+        fill(lanes.drawn, drawn);
         for (int k = 0; k < 3; ++k) {
             const uint32_t vi = corner[k];
             const glm::vec3 p = mesh.positions[vi];

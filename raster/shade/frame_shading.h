@@ -25,6 +25,7 @@
 #include "raster/scene/scene.h"
 #include "raster/simd/lane_math.h"
 #include "raster/core/visibility.h"
+#include "raster/pipeline/vertex_stage.h"
 
 namespace tessera::shade {
 
@@ -34,6 +35,11 @@ struct RenderState {
     int width = 0;   // pixels
     int height = 0;
     std::vector<scene::Light> lights;
+    // The tile rasterizer's vertices when it finds the visibility (the raster renderer; its
+    // vertex stage fills them before the tile passes shade): a triangle whose side its
+    // snapped vertices decide is lit from the side it was drawn from (FrameShading::drawn_side()).
+    // Null for ray-cast visibility: the side the geometry faces the eye with.
+    const pipeline::ClipVertices* rasterized = nullptr;
 };
 
 // One covered pixel to shade: pixel (x, y), rows top to bottom, and the id of the triangle
@@ -71,6 +77,18 @@ public:
     // they show one material (the kernel's lanes filled straight from the row, the colours
     // written back in place), the rest through shade(). Each pixel's colour is shade()'s.
     void shade_tile_surfaces(const Tile& tile) const;
+
+    // The side from which the rasterizer (RenderState::rasterized) drew triangle `id`, where
+    // snapping may have decided it: +1 for counter-clockwise in NDC (the front by winding), -1
+    // for clockwise; 0 where the projected triangle is wide enough that the snapped winding is
+    // the projected one, which the geometry's own test gives (and for clipped triangles, whose
+    // pieces keep the polygon's winding). Snapping moves each vertex by at most half a
+    // sub-pixel per axis, which changes twice the signed area by at most half the sum of
+    // |dX| + |dY| over the edges plus a few sub-pixels^2: a sliver thinner than that seen
+    // nearly edge-on can come out of the snap turned over, front for back. Lit by the world
+    // geometry it would show its other side (at a ridge seen from above, the underside: an
+    // unlit speck where the rasterizer drew the front layer).
+    float drawn_side(uint32_t id) const;
 
 private:
     template <class F>

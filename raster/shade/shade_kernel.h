@@ -30,6 +30,9 @@ struct alignas(64) Lanes {
     float nrm[3][3][kLanes];          // corner, world normal (zero when the mesh has none)
     float uv[3][2][kLanes];           // corner, texture coordinates
     float col[3][3][kLanes];          // corner, Gouraud colour
+    // The side the tile rasterizer drew the triangle from, where it decides the lit side
+    // (FrameShading::drawn_side()): +1 counter-clockwise in NDC, -1 clockwise, 0 undecided.
+    float drawn[kLanes];
     float out[4][kLanes];             // result: linear RGBA
 };
 
@@ -102,10 +105,14 @@ void shade_lanes(const KernelContext& ctx, Lanes& d, int lane) {
     // either winding convention light correctly), else by the counter-clockwise winding.
     V face = normalize_or(cross(p[1] - p[0], p[2] - p[0]), V{zero, zero, one});
     const V corner_normals = n[0] + n[1] + n[2];
-    face = select(dot(face, corner_normals) < zero, face * F(-1.0f), face);
-    // Two-sided lighting: a surface seen from behind is lit as its back side (the flag).
+    const F winding = select(dot(face, corner_normals) < zero, F(-1.0f), one);
+    face = face * winding;
+    // Two-sided lighting: a surface seen from behind is lit as its back side (the flag). Where
+    // the rasterizer says which side it drew (a sliver whose side its snapped vertices
+    // decide), that side is lit.
     const auto back = dot(face, eye - p[0]) < zero;
-    const F side = select(back, F(-1.0f), one);
+    const F drawn = ld(d.drawn);
+    const F side = select((drawn < zero) | (zero < drawn), drawn * winding, select(back, F(-1.0f), one));
     V normal = normalize_or(madd(n[0], b[0], madd(n[1], b[1], n[2] * b[2])), face) * side;
     face = face * side;
     const V view = normalize_or(eye - position, face);
