@@ -194,7 +194,8 @@ TEST(Simd, SelectPassesTheChosenLaneThrough) {
 }
 
 // Integer lanes wrap around like the hardware (scalar.h computes in uint32), shift right
-// arithmetically by per-lane counts 0 .. 31, and compare signed.
+// arithmetically by per-lane counts 0 .. 31 (and by constants: left, and right logically),
+// and compare signed.
 TEST(Simd, IntegerArithmeticWrapsAndComparesSigned) {
     Rng rng(11);
     for (int round = 0; round < kRounds; ++round) {
@@ -204,6 +205,9 @@ TEST(Simd, IntegerArithmeticWrapsAndComparesSigned) {
         const vint va = load(a), vb = load(b);
         const Lanes<int32_t> sum = lanes(va + vb), difference = lanes(va - vb), product = lanes(va * vb);
         const Lanes<int32_t> both = lanes(va & vb), either = lanes(va | vb), shifted = lanes(va >> load(s));
+        const Lanes<int32_t> exclusive = lanes(va ^ vb), left = lanes(shift_left<7>(va)),
+                             right = lanes(shift_right_logical<13>(va));
+        ASSERT_EQ(first_lane(va), a[0]);
         uint32_t ge = 0, lt = 0, eq = 0;
         for (int i = 0; i < kLanes; ++i) {
             ASSERT_EQ(sum[i], int32_t(uint32_t(a[i]) + uint32_t(b[i])));
@@ -212,6 +216,9 @@ TEST(Simd, IntegerArithmeticWrapsAndComparesSigned) {
             ASSERT_EQ(both[i], a[i] & b[i]);
             ASSERT_EQ(either[i], a[i] | b[i]);
             ASSERT_EQ(shifted[i], a[i] >> s[i]) << a[i] << " >> " << s[i];
+            ASSERT_EQ(exclusive[i], a[i] ^ b[i]);
+            ASSERT_EQ(left[i], int32_t(uint32_t(a[i]) << 7));
+            ASSERT_EQ(right[i], int32_t(uint32_t(a[i]) >> 13));
             ge |= uint32_t(a[i] >= b[i]) << i;
             lt |= uint32_t(a[i] < b[i]) << i;
             eq |= uint32_t(a[i] == b[i]) << i;

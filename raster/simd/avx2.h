@@ -38,7 +38,14 @@ inline vint operator-(vint a, vint b) { return _mm256_sub_epi32(a.v, b.v); }
 inline vint operator*(vint a, vint b) { return _mm256_mullo_epi32(a.v, b.v); }
 inline vint operator&(vint a, vint b) { return _mm256_and_si256(a.v, b.v); }
 inline vint operator|(vint a, vint b) { return _mm256_or_si256(a.v, b.v); }
+inline vint operator^(vint a, vint b) { return _mm256_xor_si256(a.v, b.v); }
 inline vint operator>>(vint a, vint s) { return _mm256_srav_epi32(a.v, s.v); }
+// Shifts by a constant count in [0, 31]: left, and right filling with zeros (logical).
+template <int N>
+inline vint shift_left(vint a) { return _mm256_slli_epi32(a.v, N); }
+template <int N>
+inline vint shift_right_logical(vint a) { return _mm256_srli_epi32(a.v, N); }
+inline int32_t first_lane(vint a) { return _mm256_cvtsi256_si32(a.v); }
 inline vmask operator<(vint a, vint b) { return vmask(_mm256_cmpgt_epi32(b.v, a.v)); }
 inline vmask operator>=(vint a, vint b) { return andnot(a < b, vmask(true)); }
 inline vmask operator==(vint a, vint b) { return vmask(_mm256_cmpeq_epi32(a.v, b.v)); }

@@ -43,7 +43,14 @@ inline vint operator-(vint a, vint b) { return _mm512_sub_epi32(a.v, b.v); }
 inline vint operator*(vint a, vint b) { return _mm512_mullo_epi32(a.v, b.v); }
 inline vint operator&(vint a, vint b) { return _mm512_and_si512(a.v, b.v); }
 inline vint operator|(vint a, vint b) { return _mm512_or_si512(a.v, b.v); }
+inline vint operator^(vint a, vint b) { return _mm512_xor_si512(a.v, b.v); }
 inline vint operator>>(vint a, vint s) { return _mm512_mask_srav_epi32(a.v, kAllLanes, a.v, s.v); }
+// Shifts by a constant count in [0, 31]: left, and right filling with zeros (logical).
+template <int N>
+inline vint shift_left(vint a) { return _mm512_mask_slli_epi32(a.v, kAllLanes, a.v, N); }
+template <int N>
+inline vint shift_right_logical(vint a) { return _mm512_mask_srli_epi32(a.v, kAllLanes, a.v, N); }
+inline int32_t first_lane(vint a) { return _mm512_cvtsi512_si32(a.v); }
 inline vmask operator>=(vint a, vint b) { return vmask(_mm512_cmpge_epi32_mask(a.v, b.v)); }
 inline vmask operator<(vint a, vint b) { return vmask(_mm512_cmplt_epi32_mask(a.v, b.v)); }
 inline vmask operator==(vint a, vint b) { return vmask(_mm512_cmpeq_epi32_mask(a.v, b.v)); }

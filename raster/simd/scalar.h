@@ -35,7 +35,14 @@ inline vint operator-(vint a, vint b) { return vint(int32_t(uint32_t(a.v) - uint
 inline vint operator*(vint a, vint b) { return vint(int32_t(uint32_t(a.v) * uint32_t(b.v))); }
 inline vint operator&(vint a, vint b) { return vint(a.v & b.v); }
 inline vint operator|(vint a, vint b) { return vint(a.v | b.v); }
+inline vint operator^(vint a, vint b) { return vint(a.v ^ b.v); }
 inline vint operator>>(vint a, vint s) { return vint(a.v >> s.v); }  // arithmetic
+// Shifts by a constant count in [0, 31]: left, and right filling with zeros (logical).
+template <int N>
+inline vint shift_left(vint a) { return vint(int32_t(uint32_t(a.v) << N)); }
+template <int N>
+inline vint shift_right_logical(vint a) { return vint(int32_t(uint32_t(a.v) >> N)); }
+inline int32_t first_lane(vint a) { return a.v; }
 inline vmask operator>=(vint a, vint b) { return vmask(a.v >= b.v); }
 inline vmask operator<(vint a, vint b) { return vmask(a.v < b.v); }
 inline vmask operator==(vint a, vint b) { return vmask(a.v == b.v); }
