@@ -125,19 +125,20 @@ void BM_FramePhong(benchmark::State& state) {
     const int width = 1920, height = 1080;
     tbb::global_control limit(tbb::global_control::max_allowed_parallelism, 1);
     const Camera camera = sphere_view(width, height);
-    std::vector<uint8_t> rgb8(size_t(width) * height * 3);
-    const pipeline::TilePass pass = simd ? shade::make_stamp_shading_pass(shade::ShadeMode::phong, camera, rgb8)
-                               : shade::make_reference_shading_pass(shade::ShadeMode::phong, camera, rgb8);
+    std::vector<uint32_t> rgba8(size_t(width) * height);
+    const pipeline::TilePass pass = simd ? shade::make_stamp_shading_pass(shade::ShadeMode::phong, camera, rgba8)
+                               : shade::make_reference_shading_pass(shade::ShadeMode::phong, camera, rgba8);
     pipeline::Rasterizer rasterizer;
     VisibilityBuffer vis;
     pipeline::RasterOptions options;
     options.cull = pipeline::CullMode::back;
     options.tile_color = !simd;  // what tessera raster does with each pass
+    options.frame_visibility = !simd;
     const pipeline::Viewport viewport(width, height);
     rasterizer.render(mesh, camera.view_projection(), viewport, options, vis, {&pass, 1});  // warm-up
     for (auto _ : state) {
         rasterizer.render(mesh, camera.view_projection(), viewport, options, vis, {&pass, 1});
-        benchmark::DoNotOptimize(rgb8.data());
+        benchmark::DoNotOptimize(rgba8.data());
     }
 }
 BENCHMARK(BM_FramePhong)

@@ -152,9 +152,13 @@ void Rasterizer::render(const Mesh& mesh, const glm::mat4& view_projection, cons
     visibility.height = viewport.height;
     if (options.depth_only && (color || !passes.empty()))
         throw std::invalid_argument("Rasterizer::render: a depth-only render takes no passes or colour");
-    if (options.depth_only) visibility.triangle.clear();
+    if (!options.frame_visibility && (options.depth_only || samples > 1))
+        throw std::invalid_argument("Rasterizer::render: visibility kept in the tiles needs one sample and triangle ids");
+    const bool frame_visibility = options.frame_visibility;
+    if (options.depth_only || !frame_visibility) visibility.triangle.clear();
     else visibility.triangle.resize(size_t(viewport.width) * viewport.height);
-    visibility.depth.resize(size_t(viewport.width) * viewport.height);
+    if (frame_visibility) visibility.depth.resize(size_t(viewport.width) * viewport.height);
+    else visibility.depth.clear();
     if (color && !options.tile_color)
         throw std::invalid_argument("Rasterizer::render: a colour buffer needs RasterOptions::tile_color");
     if (color) color->resize(size_t(viewport.width) * viewport.height);
@@ -208,6 +212,33 @@ void Rasterizer::render(const Mesh& mesh, const glm::mat4& view_projection, cons
                     std::memcpy(color->data() + size_t(rect.y0 + y) * viewport.width + rect.x0,
                                 scratch.color.data() + size_t(y) * grid.size, size_t(w) * sizeof(glm::vec4));
             if (stats) pass_ns += std::chrono::duration_cast<std::chrono::nanoseconds>(Clock::now() - pass_start).count();
+            return;
+        }
+
+        if (!frame_visibility) {
+            // The visibility stays in the tile buffers: the passes read them there, then
+            // they are cleared for the next tile.
+            if (stats) visible_pixels += buffers.covered_pixels(w, h);
+            if (run_passes) {
+                const auto pass_start = Clock::now();
+                TileWork work{&s.chunks, tile, &scratch.fragments};
+                Tile tile_part;
+                tile_part.rect = rect;
+                if (options.tile_color) {
+                    scratch.color.assign(size_t(grid.size) * grid.size, options.clear_color);
+                    tile_part.colour = scratch.color.data();
+                    tile_part.colour_stride = size_t(grid.size);
+                }
+                TileContext context = context_for(tile_part, work);
+                context.stamps = &buffers;
+                for (const TilePass& pass : passes) pass(context);
+                if (color)
+                    for (int y = 0; y < h; ++y)
+                        std::memcpy(color->data() + size_t(rect.y0 + y) * viewport.width + rect.x0,
+                                    scratch.color.data() + size_t(y) * grid.size, size_t(w) * sizeof(glm::vec4));
+                if (stats) pass_ns += std::chrono::duration_cast<std::chrono::nanoseconds>(Clock::now() - pass_start).count();
+            }
+            buffers.clear(grid.size, samples);
             return;
         }
 
