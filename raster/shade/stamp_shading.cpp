@@ -107,13 +107,14 @@ V3 operator*(vfloat s, const V3& a) { return {s * a.x, s * a.y, s * a.z}; }
 vfloat dot(const V3& a, const V3& b) { return a.x * b.x + a.y * b.y + a.z * b.z; }
 V3 broadcast(const glm::vec3& v) { return {vfloat(v.x), vfloat(v.y), vfloat(v.z)}; }
 
-// reference_shading.cpp's safe_normalize: v / |v|, 0 where |v| = 0.
+// reference_shading.cpp's safe_normalize: v * (1 / |v|), 0 where |v| = 0.
 V3 safe_normalize(const V3& v) {
     const vfloat length = simd::sqrt(dot(v, v));
     const vmask positive = vfloat(0.0f) < length;
+    const vfloat inverse = vfloat(1.0f) / length;
     const vfloat zero(0.0f);
-    return {simd::select(positive, v.x / length, zero), simd::select(positive, v.y / length, zero),
-            simd::select(positive, v.z / length, zero)};
+    return {simd::select(positive, v.x * inverse, zero), simd::select(positive, v.y * inverse, zero),
+            simd::select(positive, v.z * inverse, zero)};
 }
 
 // x^48 = (((x^3)^2)^2)^2)^2: error bound in stamp_shading.h.
