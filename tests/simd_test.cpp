@@ -208,6 +208,7 @@ TEST(Simd, IntegerArithmeticWrapsAndComparesSigned) {
         const Lanes<int32_t> exclusive = lanes(va ^ vb), left = lanes(shift_left<7>(va)),
                              right = lanes(shift_right_logical<13>(va));
         ASSERT_EQ(first_lane(va), a[0]);
+        for (int i = 0; i < kLanes; ++i) ASSERT_EQ(lane(va, i), a[i]);
         uint32_t ge = 0, lt = 0, eq = 0;
         for (int i = 0; i < kLanes; ++i) {
             ASSERT_EQ(sum[i], int32_t(uint32_t(a[i]) + uint32_t(b[i])));

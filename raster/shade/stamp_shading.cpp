@@ -71,15 +71,11 @@ struct TriangleTable {
         vint slots = simd::gather_int(lookup.data(), ids & vint(int32_t(kLookup - 1)));
         const vmask live = slots < vint(count);
         vmask missing = andnot(live & (simd::gather_int(slot_id.data(), slots) == ids), covered);
-        if (simd::any(missing)) {
-            alignas(64) int32_t lane_ids[kLanes];
-            ids.store(lane_ids);
-            do {
-                const int32_t id = lane_ids[std::countr_zero(simd::bits(missing))];
-                const vmask same = ids == vint(id);
-                slots = simd::select(same, vint(insert(ctx, uint32_t(id))), slots);
-                missing = andnot(same, missing);
-            } while (simd::any(missing));
+        while (simd::any(missing)) {
+            const int32_t id = simd::lane(ids, std::countr_zero(simd::bits(missing)));
+            const vmask same = ids == vint(id);
+            slots = simd::select(same, vint(insert(ctx, uint32_t(id))), slots);
+            missing = andnot(same, missing);
         }
         return simd::select(covered, slots, vint(0));
     }
@@ -89,6 +85,18 @@ struct TriangleTable {
 struct Broadcast {
     const float* record;
     vfloat operator()(int k) const { return vfloat(record[k]); }
+};
+// ... or those of a few triangles, each broadcast and chosen per lane (lanes[i - 1]: the
+// lanes of record[i]; those of record[0] are the rest) ...
+template <int N>
+struct Blend {
+    const float* record[N];
+    vmask lanes[N - 1];
+    vfloat operator()(int k) const {
+        vfloat v(record[0][k]);
+        for (int i = 1; i < N; ++i) v = simd::select(lanes[i - 1], vfloat(record[i][k]), v);
+        return v;
+    }
 };
 // ... or each lane's own, gathered by slot.
 struct Gather {
@@ -211,18 +219,45 @@ struct Shader {
             const vint grey = quantise(depth);
             colour = pack(grey, grey, grey);
         } else {
-            // One triangle under every covered lane (most lanes, unless the triangles are
-            // about a pixel in size): its record as constants, no gathers.
-            alignas(64) int32_t lane_ids[kLanes];
-            ids.store(lane_ids);
-            const uint32_t lanes = simd::bits(covered);
-            const int32_t first = lane_ids[std::countr_zero(lanes)];
-            if (simd::bits((ids == vint(first)) & covered) == lanes) {
-                const int32_t slot = table.find(ctx, uint32_t(first));
-                colour = shade_lanes(mode, phong, Broadcast{&table.records[size_t(slot) * kRecord]}, px, py);
+            // The triangles under the covered lanes, when there are at most four (one for
+            // most lanes, unless the triangles are about a pixel in size): their records as
+            // constants, chosen per lane with 2 N - 1 operations per value where a gather
+            // costs as much as about ten. Each is looked up before any record is read: an
+            // insertion may move the records.
+            uint32_t rest = simd::bits(covered);
+            const auto next = [&](vmask& lanes) {
+                const int32_t id = simd::lane(ids, std::countr_zero(rest));
+                lanes = (ids == vint(id)) & covered;
+                rest &= ~simd::bits(lanes);
+                return table.find(ctx, uint32_t(id));
+            };
+            const auto record = [&](int32_t slot) { return &table.records[size_t(slot) * kRecord]; };
+            vmask m0, m1, m2, m3;
+            const int32_t s0 = next(m0);
+            if (!rest) {
+                colour = shade_lanes(mode, phong, Broadcast{record(s0)}, px, py);
             } else {
-                const vint slots = table.find(ctx, ids, covered);
-                colour = shade_lanes(mode, phong, Gather{table.records.data(), slots * vint(kRecord)}, px, py);
+                const int32_t s1 = next(m1);
+                if (!rest) {
+                    colour = shade_lanes(mode, phong, Blend<2>{{record(s0), record(s1)}, {m1}}, px, py);
+                } else {
+                    const int32_t s2 = next(m2);
+                    if (!rest) {
+                        colour = shade_lanes(mode, phong, Blend<3>{{record(s0), record(s1), record(s2)}, {m1, m2}},
+                                             px, py);
+                    } else {
+                        const int32_t s3 = next(m3);
+                        if (!rest) {
+                            colour = shade_lanes(
+                                mode, phong,
+                                Blend<4>{{record(s0), record(s1), record(s2), record(s3)}, {m1, m2, m3}}, px, py);
+                        } else {
+                            const vint slots = table.find(ctx, ids, covered);
+                            colour = shade_lanes(mode, phong, Gather{table.records.data(), slots * vint(kRecord)},
+                                                 px, py);
+                        }
+                    }
+                }
             }
         }
         return simd::select(covered, colour, kBackground);

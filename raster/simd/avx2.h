@@ -46,6 +46,8 @@ inline vint shift_left(vint a) { return _mm256_slli_epi32(a.v, N); }
 template <int N>
 inline vint shift_right_logical(vint a) { return _mm256_srli_epi32(a.v, N); }
 inline int32_t first_lane(vint a) { return _mm256_cvtsi256_si32(a.v); }
+// Lane i (0 <= i < kLanes), without a round trip through memory.
+inline int32_t lane(vint a, int i) { return _mm256_cvtsi256_si32(_mm256_permutevar8x32_epi32(a.v, _mm256_set1_epi32(i))); }
 inline vmask operator<(vint a, vint b) { return vmask(_mm256_cmpgt_epi32(b.v, a.v)); }
 inline vmask operator>=(vint a, vint b) { return andnot(a < b, vmask(true)); }
 inline vmask operator==(vint a, vint b) { return vmask(_mm256_cmpeq_epi32(a.v, b.v)); }

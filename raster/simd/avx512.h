@@ -51,6 +51,8 @@ inline vint shift_left(vint a) { return _mm512_mask_slli_epi32(a.v, kAllLanes, a
 template <int N>
 inline vint shift_right_logical(vint a) { return _mm512_mask_srli_epi32(a.v, kAllLanes, a.v, N); }
 inline int32_t first_lane(vint a) { return _mm512_cvtsi512_si32(a.v); }
+// Lane i (0 <= i < kLanes), without a round trip through memory.
+inline int32_t lane(vint a, int i) { return _mm512_cvtsi512_si32(_mm512_permutexvar_epi32(_mm512_set1_epi32(i), a.v)); }
 inline vmask operator>=(vint a, vint b) { return vmask(_mm512_cmpge_epi32_mask(a.v, b.v)); }
 inline vmask operator<(vint a, vint b) { return vmask(_mm512_cmplt_epi32_mask(a.v, b.v)); }
 inline vmask operator==(vint a, vint b) { return vmask(_mm512_cmpeq_epi32_mask(a.v, b.v)); }

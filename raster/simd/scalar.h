@@ -43,6 +43,8 @@ inline vint shift_left(vint a) { return vint(int32_t(uint32_t(a.v) << N)); }
 template <int N>
 inline vint shift_right_logical(vint a) { return vint(int32_t(uint32_t(a.v) >> N)); }
 inline int32_t first_lane(vint a) { return a.v; }
+// Lane i (0 <= i < kLanes), without a round trip through memory.
+inline int32_t lane(vint a, int) { return a.v; }
 inline vmask operator>=(vint a, vint b) { return vmask(a.v >= b.v); }
 inline vmask operator<(vint a, vint b) { return vmask(a.v < b.v); }
 inline vmask operator==(vint a, vint b) { return vmask(a.v == b.v); }
