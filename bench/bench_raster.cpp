@@ -171,34 +171,35 @@ void BM_Setup(benchmark::State& state) {
 }
 BENCHMARK(BM_Setup)->ArgName("ktris")->Arg(100)->Arg(1000)->Unit(benchmark::kMillisecond)->UseRealTime();
 
-// One chunk holding the back-face-culled setups of the 1080p sphere frame: the input of the
+// The back-face-culled setups of the 1080p sphere frame, as one chunk: the input of the
 // binning and tile-stage benchmarks, which measure those stages alone.
-pipeline::ChunkBins sphere_setups(size_t triangles) {
+std::vector<pipeline::TriangleSetup> sphere_setups(size_t triangles) {
     const Mesh& mesh = sphere_mesh(triangles);
     const pipeline::Viewport viewport(1920, 1080);
     pipeline::ClipVertices vertices;
     pipeline::run_vertex_stage(mesh, sphere_camera(1920, 1080), viewport, vertices);
-    pipeline::ChunkBins chunk;
+    std::vector<pipeline::TriangleSetup> setups;
     pipeline::RasterStats stats;
     pipeline::RasterOptions options;
     options.cull = pipeline::CullMode::back;
-    pipeline::run_primitive_stage(mesh, vertices, viewport, options, 0, uint32_t(mesh.triangle_count()), chunk.setups, stats);
-    return chunk;
+    pipeline::run_primitive_stage(mesh, vertices, viewport, options, 0, uint32_t(mesh.triangle_count()), setups, stats);
+    return setups;
 }
 
 // Binning alone, on the setups of one frame.
 void BM_Binning(benchmark::State& state) {
     const size_t triangles = size_t(state.range(0)) * 1000;
     const int tile = int(state.range(1));
-    pipeline::ChunkBins chunk = sphere_setups(triangles);
+    const std::vector<pipeline::TriangleSetup> setups = sphere_setups(triangles);
+    pipeline::ChunkBins chunk;
     const TileGrid grid(1920, 1080, tile);
     std::vector<uint32_t> scratch;
     for (auto _ : state) {
-        chunk.bin(grid, scratch);
+        chunk.bin(setups, grid, scratch);
         benchmark::DoNotOptimize(chunk.entries.data());
     }
     state.counters["tri/s"] =
-        benchmark::Counter(double(chunk.setups.size()), benchmark::Counter::kIsIterationInvariantRate);
+        benchmark::Counter(double(setups.size()), benchmark::Counter::kIsIterationInvariantRate);
 }
 BENCHMARK(BM_Binning)
     ->ArgNames({"ktris", "tile"})
@@ -210,10 +211,11 @@ BENCHMARK(BM_Binning)
 void BM_TileRaster(benchmark::State& state) {
     const size_t triangles = size_t(state.range(0)) * 1000;
     const int tile = int(state.range(1));
-    pipeline::ChunkBins chunk = sphere_setups(triangles);
+    const std::vector<pipeline::TriangleSetup> setups = sphere_setups(triangles);
+    pipeline::ChunkBins chunk;
     const TileGrid grid(1920, 1080, tile);
     std::vector<uint32_t> scratch;
-    chunk.bin(grid, scratch);
+    chunk.bin(setups, grid, scratch);
     pipeline::TileBuffers buffers;
     for (auto _ : state) {
         for (int t = 0; t < grid.count(); ++t) {
@@ -226,7 +228,7 @@ void BM_TileRaster(benchmark::State& state) {
         }
     }
     state.counters["tri/s"] =
-        benchmark::Counter(double(chunk.setups.size()), benchmark::Counter::kIsIterationInvariantRate);
+        benchmark::Counter(double(setups.size()), benchmark::Counter::kIsIterationInvariantRate);
 }
 BENCHMARK(BM_TileRaster)
     ->ArgNames({"ktris", "tile"})

@@ -20,7 +20,7 @@ bool same_setup(const TriangleSetup& a, const TriangleSetup& b) { return std::me
 
 // Bins of `chunk` against the definition: tile t's bin is the subsequence of the setups whose
 // box [minx, maxx] x [miny, maxy] meets the tile's pixels, copied whole.
-void expect_bins(const ChunkBins& chunk, const TileGrid& grid) {
+void expect_bins(const ChunkBins& chunk, const std::vector<TriangleSetup>& setups, const TileGrid& grid) {
     ASSERT_EQ(chunk.offsets.size(), size_t(grid.count()) + 1);
     ASSERT_EQ(chunk.offsets.front(), 0u);
     ASSERT_EQ(chunk.offsets.back(), chunk.entries.size());
@@ -28,7 +28,7 @@ void expect_bins(const ChunkBins& chunk, const TileGrid& grid) {
         const int x0 = (tile % grid.tiles_x) * grid.size, y0 = (tile / grid.tiles_x) * grid.size;
         const int x1 = std::min(x0 + grid.size, grid.width), y1 = std::min(y0 + grid.size, grid.height);
         const TriangleSetup* e = chunk.begin(tile);
-        for (const TriangleSetup& s : chunk.setups) {
+        for (const TriangleSetup& s : setups) {
             if (s.maxx < x0 || s.minx >= x1 || s.maxy < y0 || s.miny >= y1) continue;
             ASSERT_LT(e, chunk.end(tile)) << "tile " << tile << " misses triangle " << s.triangle;
             ASSERT_TRUE(same_setup(*e, s)) << "tile " << tile << ": triangle " << e->triangle << " where "
@@ -41,12 +41,12 @@ void expect_bins(const ChunkBins& chunk, const TileGrid& grid) {
 }
 
 // Every covered pixel of every triangle finds the triangle in its tile's bin.
-void expect_coverage_binned(const ChunkBins& chunk, const TileGrid& grid) {
-    const size_t n = chunk.setups.size();
+void expect_coverage_binned(const ChunkBins& chunk, const std::vector<TriangleSetup>& setups, const TileGrid& grid) {
+    const size_t n = setups.size();
     std::vector<char> binned(size_t(grid.count()) * n, 0);  // [tile][triangle]
     for (int tile = 0; tile < grid.count(); ++tile)
         for (const TriangleSetup* e = chunk.begin(tile); e != chunk.end(tile); ++e) binned[tile * n + e->triangle] = 1;
-    for (const TriangleSetup& s : chunk.setups)
+    for (const TriangleSetup& s : setups)
         for (int y = s.miny; y <= s.maxy; ++y)
             for (int x = s.minx; x <= s.maxx; ++x) {
                 const size_t tile = size_t(y / grid.size) * grid.tiles_x + size_t(x / grid.size);
@@ -72,7 +72,7 @@ TEST(PipelineBin, TileGridCoversTheViewportAndBinningNeedsPowerOfTwoTiles) {
     ChunkBins chunk;
     std::vector<uint32_t> scratch;
     for (int bad : {24, 100, 96})
-        EXPECT_THROW(chunk.bin(TileGrid(640, 480, bad), scratch), std::invalid_argument) << bad;
+        EXPECT_THROW(chunk.bin({}, TileGrid(640, 480, bad), scratch), std::invalid_argument) << bad;
 }
 
 TEST(PipelineBin, EveryTileGetsExactlyTheTrianglesThatMeetItInSubmissionOrder) {
@@ -80,13 +80,14 @@ TEST(PipelineBin, EveryTileGetsExactlyTheTrianglesThatMeetItInSubmissionOrder) {
     std::vector<uint32_t> scratch;  // reused across grids, as the rasterizer reuses it
     for (const auto& [w, h] : {std::pair{301, 217}, std::pair{256, 128}, std::pair{1000, 37}}) {
         ChunkBins chunk;
-        chunk.setups = test::random_setups(rng, Viewport(w, h), 300, {1, 4, 20, 70, 300, 16000});
+        const std::vector<TriangleSetup> setups =
+            test::random_setups(rng, Viewport(w, h), 300, {1, 4, 20, 70, 300, 16000});
         for (int size : {16, 32, 64, 128, 256}) {
             const TileGrid grid(w, h, size);
-            chunk.bin(grid, scratch);
-            expect_bins(chunk, grid);
+            chunk.bin(setups, grid, scratch);
+            expect_bins(chunk, setups, grid);
             if (HasFatalFailure()) return;
-            expect_coverage_binned(chunk, grid);
+            expect_coverage_binned(chunk, setups, grid);
             if (HasFatalFailure()) return;
         }
     }
@@ -97,28 +98,29 @@ TEST(PipelineBin, BoxesAtTileBorders) {
     const int w = 200, h = 150;
     const TileGrid grid(w, h, 32);
     ChunkBins chunk;
+    std::vector<TriangleSetup> setups;
     for (int edge : {31, 32, 63, 64, 127, 128, 149, 199}) {
         TriangleSetup s{};
         s.minx = int16_t(std::min(edge, w - 1));
         s.maxx = s.minx;
         s.miny = int16_t(std::min(edge, h - 1));
         s.maxy = s.miny;
-        s.triangle = uint32_t(chunk.setups.size());
-        chunk.setups.push_back(s);
+        s.triangle = uint32_t(setups.size());
+        setups.push_back(s);
         s.minx = int16_t(std::max(0, edge - 1));
         s.maxx = int16_t(std::min(edge + 1, w - 1));
         s.miny = 0;
         s.maxy = int16_t(h - 1);
-        s.triangle = uint32_t(chunk.setups.size());
-        chunk.setups.push_back(s);
+        s.triangle = uint32_t(setups.size());
+        setups.push_back(s);
     }
     std::vector<uint32_t> scratch;
-    chunk.bin(grid, scratch);
-    expect_bins(chunk, grid);
+    chunk.bin(setups, grid, scratch);
+    expect_bins(chunk, setups, grid);
 
     // No setups: every bin empty.
     ChunkBins none;
-    none.bin(grid, scratch);
+    none.bin({}, grid, scratch);
     ASSERT_EQ(none.offsets.size(), size_t(grid.count()) + 1);
     for (int t = 0; t < grid.count(); ++t) EXPECT_EQ(none.begin(t), none.end(t));
 }

@@ -207,6 +207,7 @@ TEST(Simd, IntegerArithmeticWrapsAndComparesSigned) {
         const Lanes<int32_t> both = lanes(va & vb), either = lanes(va | vb), shifted = lanes(va >> load(s));
         const Lanes<int32_t> exclusive = lanes(va ^ vb), left = lanes(shift_left<7>(va)),
                              right = lanes(shift_right_logical<13>(va));
+        const Lanes<int32_t> least = lanes(min(va, vb)), most = lanes(max(va, vb));
         ASSERT_EQ(first_lane(va), a[0]);
         for (int i = 0; i < kLanes; ++i) ASSERT_EQ(lane(va, i), a[i]);
         uint32_t ge = 0, lt = 0, eq = 0;
@@ -218,6 +219,8 @@ TEST(Simd, IntegerArithmeticWrapsAndComparesSigned) {
             ASSERT_EQ(either[i], a[i] | b[i]);
             ASSERT_EQ(shifted[i], a[i] >> s[i]) << a[i] << " >> " << s[i];
             ASSERT_EQ(exclusive[i], a[i] ^ b[i]);
+            ASSERT_EQ(least[i], std::min(a[i], b[i]));
+            ASSERT_EQ(most[i], std::max(a[i], b[i]));
             ASSERT_EQ(left[i], int32_t(uint32_t(a[i]) << 7));
             ASSERT_EQ(right[i], int32_t(uint32_t(a[i]) >> 13));
             ge |= uint32_t(a[i] >= b[i]) << i;

@@ -6,7 +6,7 @@
 
 namespace tessera::pipeline {
 
-void ChunkBins::bin(const TileGrid& grid, std::vector<uint32_t>& count) {
+void ChunkBins::bin(std::span<const TriangleSetup> setups, const TileGrid& grid, std::vector<uint32_t>& count) {
     if (!std::has_single_bit(unsigned(grid.size)))
         throw std::invalid_argument("binning needs tiles of a power-of-two size, not " + std::to_string(grid.size));
     const int shift = std::countr_zero(unsigned(grid.size));

@@ -8,6 +8,7 @@
 // and TLB miss per triangle, measured as the dominant cost of the first version).
 #pragma once
 #include <cstdint>
+#include <span>
 #include <vector>
 
 #include "raster/core/tile.h"
@@ -15,15 +16,16 @@
 
 namespace tessera::pipeline {
 
-// One chunk's triangle setups and their per-tile bins (counting-sorted by tile).
+// One chunk's per-tile bins of triangle setups (counting-sorted by tile).
 struct ChunkBins {
-    std::vector<TriangleSetup> setups;   // in submission order, as the primitive stage made them
     std::vector<TriangleSetup> entries;  // copies grouped by tile, in setup order per tile
     std::vector<uint32_t> offsets;       // bin of tile t = entries[offsets[t] .. offsets[t+1])
 
-    // Builds entries/offsets from `setups` for `grid` (tiles of a power-of-two size).
-    // `scratch` is reused storage.
-    void bin(const TileGrid& grid, std::vector<uint32_t>& scratch);
+    // Builds entries/offsets from the chunk's `setups` (in submission order, as the primitive
+    // stage made them) for `grid` (tiles of a power-of-two size). `scratch` is reused storage.
+    // The setups are needed only until then: the rasterizer keeps them in a buffer per thread,
+    // reused chunk after chunk, so that they stay in cache instead of going out to memory.
+    void bin(std::span<const TriangleSetup> setups, const TileGrid& grid, std::vector<uint32_t>& scratch);
 
     const TriangleSetup* begin(int tile) const { return entries.data() + offsets[tile]; }
     const TriangleSetup* end(int tile) const { return entries.data() + offsets[tile + 1]; }

@@ -65,6 +65,7 @@ struct Rasterizer::State {
     std::vector<ChunkBins> chunks;
     std::vector<RasterStats> chunk_stats;
     std::vector<std::vector<uint32_t>> bin_scratch;
+    tbb::enumerable_thread_specific<std::vector<TriangleSetup>> setups;  // a chunk's, until binned
     tbb::enumerable_thread_specific<TileScratch> scratch;
     TileGrid grid;
 };
@@ -136,12 +137,12 @@ void Rasterizer::render(const Mesh& mesh, const glm::mat4& view_projection, cons
         for (size_t c = r.begin(); c != r.end(); ++c) {
             TraceScope trace("setup+bin chunk", "chunk", int(c));
             ChunkBins& chunk = s.chunks[c];
-            chunk.setups.clear();
+            std::vector<TriangleSetup>& setups = s.setups.local();
+            setups.clear();
             const uint32_t first = uint32_t(c * chunk_size);
             const uint32_t last = uint32_t(std::min(triangle_count, (c + 1) * chunk_size));
-            run_primitive_stage(mesh, s.vertices, viewport, options, first, last, chunk.setups,
-                                s.chunk_stats[c]);
-            chunk.bin(grid, s.bin_scratch[c]);
+            run_primitive_stage(mesh, s.vertices, viewport, options, first, last, setups, s.chunk_stats[c]);
+            chunk.bin(setups, grid, s.bin_scratch[c]);
         }
     });
     const double setup_bin_ms = ms_since(setup_start);

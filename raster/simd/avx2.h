@@ -39,6 +39,8 @@ inline vint operator*(vint a, vint b) { return _mm256_mullo_epi32(a.v, b.v); }
 inline vint operator&(vint a, vint b) { return _mm256_and_si256(a.v, b.v); }
 inline vint operator|(vint a, vint b) { return _mm256_or_si256(a.v, b.v); }
 inline vint operator^(vint a, vint b) { return _mm256_xor_si256(a.v, b.v); }
+inline vint min(vint a, vint b) { return _mm256_min_epi32(a.v, b.v); }
+inline vint max(vint a, vint b) { return _mm256_max_epi32(a.v, b.v); }
 inline vint operator>>(vint a, vint s) { return _mm256_srav_epi32(a.v, s.v); }
 // Shifts by a constant count in [0, 31]: left, and right filling with zeros (logical).
 template <int N>

@@ -44,6 +44,8 @@ inline vint operator*(vint a, vint b) { return _mm512_mullo_epi32(a.v, b.v); }
 inline vint operator&(vint a, vint b) { return _mm512_and_si512(a.v, b.v); }
 inline vint operator|(vint a, vint b) { return _mm512_or_si512(a.v, b.v); }
 inline vint operator^(vint a, vint b) { return _mm512_xor_si512(a.v, b.v); }
+inline vint min(vint a, vint b) { return _mm512_mask_min_epi32(a.v, kAllLanes, a.v, b.v); }
+inline vint max(vint a, vint b) { return _mm512_mask_max_epi32(a.v, kAllLanes, a.v, b.v); }
 inline vint operator>>(vint a, vint s) { return _mm512_mask_srav_epi32(a.v, kAllLanes, a.v, s.v); }
 // Shifts by a constant count in [0, 31]: left, and right filling with zeros (logical).
 template <int N>

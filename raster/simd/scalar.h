@@ -36,6 +36,8 @@ inline vint operator*(vint a, vint b) { return vint(int32_t(uint32_t(a.v) * uint
 inline vint operator&(vint a, vint b) { return vint(a.v & b.v); }
 inline vint operator|(vint a, vint b) { return vint(a.v | b.v); }
 inline vint operator^(vint a, vint b) { return vint(a.v ^ b.v); }
+inline vint min(vint a, vint b) { return a.v < b.v ? a : b; }
+inline vint max(vint a, vint b) { return a.v < b.v ? b : a; }
 inline vint operator>>(vint a, vint s) { return vint(a.v >> s.v); }  // arithmetic
 // Shifts by a constant count in [0, 31]: left, and right filling with zeros (logical).
 template <int N>

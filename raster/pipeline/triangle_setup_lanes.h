@@ -1,0 +1,50 @@
+// Triangle setup (triangle_setup.h) of simd::kLanes triangles at once, for the triangles
+// whose vertex box spans less than kSmallExtent sub-pixels per axis (the "small" triangles of
+// fixed_point.h, most triangles of a detailed mesh). There every integer setup computes fits
+// int32 lanes exactly:
+// - the edge deltas |dX|, |dY| < 2^15, so twice the area |dX1 dY2 - dY1 dX2| < 2 * 2^30;
+// - the edge function at the pixel box's first pixel centre P is twice the signed area of the
+//   triangle (Va, Vb, P), all three within the vertex box grown by half a pixel (P lies in
+//   the vertex box itself with one sample, within 128 sub-pixels of it with several), so
+//   |E| <= (2^15 + 256)^2 < 2^31, and F = floor(E' / 256) and E' mod 256 (E' = E - 1 on
+//   edges that are not top or left) follow with a shift and a mask.
+// The depth plane is DepthPlane::from per triangle, and the results are those of
+// setup_triangle bit for bit (tests/pipeline_triangle_setup_test).
+#pragma once
+#include <cstdint>
+
+#include "raster/pipeline/triangle_setup.h"
+#include "raster/pipeline/viewport.h"
+#include "raster/simd/simd.h"
+
+namespace tessera::pipeline {
+
+// The snapped window vertices of kLanes triangles, one lane per triangle, corners in
+// submission winding.
+struct WindowLanes {
+    simd::vint X[3], Y[3];
+    simd::vfloat z[3];
+};
+
+// The setups of kLanes small triangles, field by field (what setup_small_triangles found).
+struct SmallSetups {
+    alignas(64) int32_t f[3][simd::kLanes], dx[3][simd::kLanes], dy[3][simd::kLanes], residue[3][simd::kLanes];
+    alignas(64) int32_t box[4][simd::kLanes];  // minx, miny, maxx, maxy
+    alignas(64) int32_t X[3][simd::kLanes], Y[3][simd::kLanes];  // oriented corners, for the depth plane
+    alignas(64) float z[3][simd::kLanes];
+    SetupResult result[simd::kLanes];
+
+    // Writes the setup of a lane whose result is drawn (triangle and transparent are left to
+    // the caller). Written in place: a setup assembled elsewhere and copied would be read
+    // back through store forwarding, which fails across its narrow fields.
+    void write(int lane, TriangleSetup& out) const;
+};
+
+// Sets up the triangles of the lanes in `active` that are small. Returns the lanes of `active`
+// it did not set up (a vertex box of kSmallExtent or more: setup_triangle's work). For every
+// other lane of `active`, out.result[lane] is setup_triangle's result and, when that is
+// drawn, out.write(lane, ...) gives its setup.
+simd::vmask setup_small_triangles(const WindowLanes& v, simd::vmask active, CullMode cull, const Viewport& viewport,
+                                  int samples, SmallSetups& out);
+
+}  // namespace tessera::pipeline
