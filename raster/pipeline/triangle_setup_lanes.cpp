@@ -13,8 +13,11 @@ void SmallSetups::write(int lane, TriangleSetup& t) const {
         t.dy[i] = dy[i][lane];
         t.residue[i] = uint8_t(residue[i][lane]);
     }
-    t.depth = DepthPlane::from({X[0][lane], Y[0][lane], z[0][lane]}, {X[1][lane], Y[1][lane], z[1][lane]},
-                               {X[2][lane], Y[2][lane], z[2][lane]});
+    t.depth.a = plane[0][lane];
+    t.depth.b = plane[1][lane];
+    t.depth.c = plane[2][lane];
+    t.depth.ax = int16_t(anchor[0][lane]);
+    t.depth.ay = int16_t(anchor[1][lane]);
     t.minx = int16_t(box[0][lane]);
     t.miny = int16_t(box[1][lane]);
     t.maxx = int16_t(box[2][lane]);
@@ -65,10 +68,26 @@ vmask setup_small_triangles(const WindowLanes& v, vmask active, CullMode cull, c
         dY.store(out.dy[i]);
     }
     minx.store(out.box[0]), miny.store(out.box[1]), maxx.store(out.box[2]), maxy.store(out.box[3]);
-    for (int k = 0; k < 3; ++k) X[k].store(out.X[k]), Y[k].store(out.Y[k]);
-    v.z[0].store(out.z[0]);
-    simd::select(front, v.z[2], v.z[1]).store(out.z[1]);
-    simd::select(front, v.z[1], v.z[2]).store(out.z[2]);
+
+    // The depth planes (DepthPlane::from), for every lane: those of lanes that are not drawn
+    // are never read.
+    alignas(64) int32_t corner_x[3][kLanes], corner_y[3][kLanes];
+    alignas(64) float corner_z[3][kLanes];
+    for (int k = 0; k < 3; ++k) X[k].store(corner_x[k]), Y[k].store(corner_y[k]);
+    v.z[0].store(corner_z[0]);
+    simd::select(front, v.z[2], v.z[1]).store(corner_z[1]);
+    simd::select(front, v.z[1], v.z[2]).store(corner_z[2]);
+    for (int lane = 0; lane < kLanes; ++lane) {
+        const int32_t x0 = corner_x[0][lane], y0 = corner_y[0][lane];
+        const int32_t ax = x0 >> kSubpixelBits, ay = y0 >> kSubpixelBits;
+        const double cx = (double(ax) + 0.5) - double(x0) / kSubpixels;
+        const double cy = (double(ay) + 0.5) - double(y0) / kSubpixels;
+        depth_plane_coefficients(corner_x[1][lane] - x0, corner_y[1][lane] - y0, corner_x[2][lane] - x0,
+                                 corner_y[2][lane] - y0, corner_z[0][lane], corner_z[1][lane], corner_z[2][lane], cx,
+                                 cy, out.plane[0][lane], out.plane[1][lane], out.plane[2][lane]);
+        out.anchor[0][lane] = ax;
+        out.anchor[1][lane] = ay;
+    }
 
     const uint32_t set_up = simd::bits(lanes), zero_area = simd::bits(flat);
     const uint32_t culled_face = simd::bits(culled), no_samples = simd::bits(empty);

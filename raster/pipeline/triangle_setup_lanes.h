@@ -8,7 +8,8 @@
 //   the vertex box itself with one sample, within 128 sub-pixels of it with several), so
 //   |E| <= (2^15 + 256)^2 < 2^31, and F = floor(E' / 256) and E' mod 256 (E' = E - 1 on
 //   edges that are not top or left) follow with a shift and a mask.
-// The depth plane is DepthPlane::from per triangle, and the results are those of
+// The depth planes are DepthPlane::from's double arithmetic (depth_plane_coefficients) in a
+// loop over the lanes that the compiler vectorises, and the results are those of
 // setup_triangle bit for bit (tests/pipeline_triangle_setup_test).
 #pragma once
 #include <cstdint>
@@ -30,8 +31,8 @@ struct WindowLanes {
 struct SmallSetups {
     alignas(64) int32_t f[3][simd::kLanes], dx[3][simd::kLanes], dy[3][simd::kLanes], residue[3][simd::kLanes];
     alignas(64) int32_t box[4][simd::kLanes];  // minx, miny, maxx, maxy
-    alignas(64) int32_t X[3][simd::kLanes], Y[3][simd::kLanes];  // oriented corners, for the depth plane
-    alignas(64) float z[3][simd::kLanes];
+    alignas(64) float plane[3][simd::kLanes];    // DepthPlane a, b, c
+    alignas(64) int32_t anchor[2][simd::kLanes];  // DepthPlane ax, ay
     SetupResult result[simd::kLanes];
 
     // Writes the setup of a lane whose result is drawn (triangle and transparent are left to
