@@ -316,6 +316,21 @@ TEST(Simd, LoadStoreGatherAndLaneIndex) {
     }
 }
 
+TEST(Simd, InterleavedLoadsSplitTheThreeStreams) {
+    std::vector<int32_t> values(3 * kLanes + 5);
+    for (size_t i = 0; i < values.size(); ++i) values[i] = int32_t(i * 7919 + 13);
+    for (int start = 0; start < 5; ++start) {  // unaligned
+        vint a, b, c;
+        load_interleaved3(values.data() + start, a, b, c);
+        const Lanes<int32_t> x = lanes(a), y = lanes(b), z = lanes(c);
+        for (int i = 0; i < kLanes; ++i) {
+            ASSERT_EQ(x[i], values[size_t(start + 3 * i)]);
+            ASSERT_EQ(y[i], values[size_t(start + 3 * i + 1)]);
+            ASSERT_EQ(z[i], values[size_t(start + 3 * i + 2)]);
+        }
+    }
+}
+
 TEST(Simd, MaskedStoresWriteOnlyTheSelectedLanes) {
     Rng rng(15);
     for (int round = 0; round < kRounds; ++round) {

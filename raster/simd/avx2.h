@@ -103,6 +103,15 @@ inline void store_low_bytes(uint8_t* p, vint a) {
     std::memcpy(p, &bytes, 8);
 }
 
+// The three streams of 3 * kLanes consecutive values: a[i] = p[3i], b[i] = p[3i + 1],
+// c[i] = p[3i + 2] (gathered).
+inline void load_interleaved3(const int32_t* p, vint& a, vint& b, vint& c) {
+    const __m256i from = _mm256_mullo_epi32(lane_index().v, _mm256_set1_epi32(3));
+    a = _mm256_i32gather_epi32(p, from, 4);
+    b = _mm256_i32gather_epi32(p + 1, from, 4);
+    c = _mm256_i32gather_epi32(p + 2, from, 4);
+}
+
 // Stores of the lanes selected by `m`: load, blend, store (the tile owns the whole line).
 inline void store_masked(float* p, vmask m, vfloat a) { select(m, a, vfloat::load(p)).store(p); }
 inline void store_masked(uint32_t* p, vmask m, vint a) {

@@ -101,6 +101,21 @@ inline vfloat float_of_bits(vint a) { return _mm512_castsi512_ps(a.v); }
 // The low byte of each lane to p[0 .. kLanes) (unaligned).
 inline void store_low_bytes(uint8_t* p, vint a) { _mm_storeu_si128(reinterpret_cast<__m128i*>(p), _mm512_cvtepi32_epi8(a.v)); }
 
+// The three streams of 3 * kLanes consecutive values (unaligned): a[i] = p[3i], b[i] = p[3i + 1],
+// c[i] = p[3i + 2]. Two two-source permutes per stream: the values below p + 32, then the rest.
+inline void load_interleaved3(const int32_t* p, vint& a, vint& b, vint& c) {
+    const __m512i x = _mm512_loadu_si512(p), y = _mm512_loadu_si512(p + 16), z = _mm512_loadu_si512(p + 32);
+    const __m512i lane = _mm512_setr_epi32(0, 1, 2, 3, 4, 5, 6, 7, 8, 9, 10, 11, 12, 13, 14, 15);
+    vint* out[3] = {&a, &b, &c};
+    for (int k = 0; k < 3; ++k) {
+        const __m512i from = _mm512_add_epi32(_mm512_mullo_epi32(lane, _mm512_set1_epi32(3)), _mm512_set1_epi32(k));
+        const __m512i low = _mm512_permutex2var_epi32(x, from, y);  // right where from < 32
+        const __mmask16 high = _mm512_cmpge_epi32_mask(from, _mm512_set1_epi32(32));
+        const __m512i second = _mm512_mask_blend_epi32(high, lane, _mm512_sub_epi32(from, _mm512_set1_epi32(16)));
+        out[k]->v = _mm512_permutex2var_epi32(low, second, z);
+    }
+}
+
 // Aligned stores of the lanes selected by `m`.
 inline void store_masked(float* p, vmask m, vfloat a) { _mm512_mask_store_ps(p, m.m, a.v); }
 inline void store_masked(uint32_t* p, vmask m, vint a) { _mm512_mask_store_epi32(p, m.m, a.v); }

@@ -92,6 +92,14 @@ inline vfloat float_of_bits(vint a) {
 // The low byte of each lane to p[0 .. kLanes).
 inline void store_low_bytes(uint8_t* p, vint a) { p[0] = uint8_t(a.v); }
 
+// The three streams of 3 * kLanes consecutive values: a[i] = p[3i], b[i] = p[3i + 1],
+// c[i] = p[3i + 2].
+inline void load_interleaved3(const int32_t* p, vint& a, vint& b, vint& c) {
+    a = vint(p[0]);
+    b = vint(p[1]);
+    c = vint(p[2]);
+}
+
 // Stores the lanes of `a` where `m` is set (the others keep their memory contents).
 inline void store_masked(float* p, vmask m, vfloat a) { if (m.m) p[0] = a.v; }
 inline void store_masked(uint32_t* p, vmask m, vint a) { if (m.m) p[0] = uint32_t(a.v); }
