@@ -201,50 +201,59 @@ void BM_Setup(benchmark::State& state) {
     const glm::mat4 vp = sphere_camera(1920, 1080);
     tbb::global_control limit(tbb::global_control::max_allowed_parallelism, 1);
     pipeline::ClipVertices vertices;
+    std::vector<pipeline::BinItem> items;
     std::vector<pipeline::TriangleSetup> setups;
     pipeline::RasterOptions options;
     options.cull = pipeline::CullMode::back;
     for (auto _ : state) {
         pipeline::run_vertex_stage(mesh, vp, viewport, vertices);
+        items.clear();
         setups.clear();
         pipeline::RasterStats stats;
-        pipeline::run_primitive_stage(mesh, vertices, viewport, options, 0, uint32_t(mesh.triangle_count()), setups, stats);
-        benchmark::DoNotOptimize(setups.data());
+        pipeline::run_primitive_stage(mesh, vertices, viewport, options, 0, uint32_t(mesh.triangle_count()), items,
+                                      setups, stats);
+        benchmark::DoNotOptimize(items.data());
     }
     state.counters["tri/s"] =
         benchmark::Counter(double(mesh.triangle_count()), benchmark::Counter::kIsIterationInvariantRate);
 }
 BENCHMARK(BM_Setup)->ArgName("ktris")->Arg(100)->Arg(1000)->Unit(benchmark::kMillisecond)->UseRealTime();
 
-// The back-face-culled setups of the 1080p sphere frame, as one chunk: the input of the
-// binning and tile-stage benchmarks, which measure those stages alone.
-std::vector<pipeline::TriangleSetup> sphere_setups(size_t triangles) {
+// The back-face-culled triangles of the 1080p sphere frame as one chunk, every setup stored
+// (no deferred setups): the input of the binning and tile-stage benchmarks, which measure
+// those stages alone.
+struct SphereChunk {
+    pipeline::ChunkBins chunk;
+    std::vector<pipeline::BinItem> items;
+};
+SphereChunk sphere_setups(size_t triangles) {
     const Mesh& mesh = sphere_mesh(triangles);
     const pipeline::Viewport viewport(1920, 1080);
     pipeline::ClipVertices vertices;
     pipeline::run_vertex_stage(mesh, sphere_camera(1920, 1080), viewport, vertices);
-    std::vector<pipeline::TriangleSetup> setups;
+    SphereChunk s;
     pipeline::RasterStats stats;
     pipeline::RasterOptions options;
     options.cull = pipeline::CullMode::back;
-    pipeline::run_primitive_stage(mesh, vertices, viewport, options, 0, uint32_t(mesh.triangle_count()), setups, stats);
-    return setups;
+    pipeline::run_primitive_stage(mesh, vertices, viewport, options, 0, uint32_t(mesh.triangle_count()), s.items,
+                                  s.chunk.setups, stats, /*store_all=*/true);
+    return s;
 }
 
 // Binning alone, on the setups of one frame.
 void BM_Binning(benchmark::State& state) {
     const size_t triangles = size_t(state.range(0)) * 1000;
     const int tile = int(state.range(1));
-    const std::vector<pipeline::TriangleSetup> setups = sphere_setups(triangles);
-    pipeline::ChunkBins chunk;
+    SphereChunk s = sphere_setups(triangles);
+    pipeline::ChunkBins& chunk = s.chunk;
     const TileGrid grid(1920, 1080, tile);
     std::vector<uint32_t> scratch;
     for (auto _ : state) {
-        chunk.bin(setups, grid, scratch);
+        chunk.bin(s.items, grid, scratch);
         benchmark::DoNotOptimize(chunk.entries.data());
     }
     state.counters["tri/s"] =
-        benchmark::Counter(double(setups.size()), benchmark::Counter::kIsIterationInvariantRate);
+        benchmark::Counter(double(chunk.setups.size()), benchmark::Counter::kIsIterationInvariantRate);
 }
 BENCHMARK(BM_Binning)
     ->ArgNames({"ktris", "tile"})
@@ -256,24 +265,24 @@ BENCHMARK(BM_Binning)
 void BM_TileRaster(benchmark::State& state) {
     const size_t triangles = size_t(state.range(0)) * 1000;
     const int tile = int(state.range(1));
-    const std::vector<pipeline::TriangleSetup> setups = sphere_setups(triangles);
-    pipeline::ChunkBins chunk;
+    SphereChunk s = sphere_setups(triangles);
+    pipeline::ChunkBins& chunk = s.chunk;
     const TileGrid grid(1920, 1080, tile);
     std::vector<uint32_t> scratch;
-    chunk.bin(setups, grid, scratch);
+    chunk.bin(s.items, grid, scratch);
     pipeline::TileBuffers buffers;
     for (auto _ : state) {
         for (int t = 0; t < grid.count(); ++t) {
             const int tx = t % grid.tiles_x, ty = t / grid.tiles_x;
             const TileRect rect{tx * tile, ty * tile, std::min((tx + 1) * tile, 1920), std::min((ty + 1) * tile, 1080)};
             buffers.clear(tile);
-            for (const pipeline::TriangleSetup* e = chunk.begin(t); e != chunk.end(t); ++e)
-                pipeline::rasterize_opaque(*e, rect, buffers);
+            for (const uint32_t* e = chunk.begin(t); e != chunk.end(t); ++e)
+                pipeline::rasterize_opaque(chunk.setups[*e & ~pipeline::kStoredSetup], rect, buffers);
             benchmark::DoNotOptimize(buffers.depth.data());
         }
     }
     state.counters["tri/s"] =
-        benchmark::Counter(double(setups.size()), benchmark::Counter::kIsIterationInvariantRate);
+        benchmark::Counter(double(chunk.setups.size()), benchmark::Counter::kIsIterationInvariantRate);
 }
 BENCHMARK(BM_TileRaster)
     ->ArgNames({"ktris", "tile"})

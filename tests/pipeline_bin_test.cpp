@@ -1,10 +1,10 @@
 // Binning (raster/pipeline/bin.h) against a brute-force assignment: each tile's bin holds
-// exactly the setups whose pixel box meets the tile, in submission order, so every tile a
-// triangle covers a pixel of gets it; for every tile size and partial tiles at the borders.
+// exactly the entries of the setups whose pixel box meets the tile, in submission order, so
+// every tile a triangle covers a pixel of gets it; for every tile size and partial tiles at
+// the borders.
 #include <gtest/gtest.h>
 
 #include <algorithm>
-#include <cstring>
 #include <stdexcept>
 #include <vector>
 
@@ -16,10 +16,16 @@ namespace {
 
 using test::Rng;
 
-bool same_setup(const TriangleSetup& a, const TriangleSetup& b) { return std::memcmp(&a, &b, sizeof a) == 0; }
+// The bin items of `setups`, each naming its setup (as the primitive stage's stored setups).
+std::vector<BinItem> items_of(const std::vector<TriangleSetup>& setups) {
+    std::vector<BinItem> items;
+    for (size_t i = 0; i < setups.size(); ++i)
+        items.push_back({kStoredSetup | uint32_t(i), setups[i].minx, setups[i].miny, setups[i].maxx, setups[i].maxy});
+    return items;
+}
 
 // Bins of `chunk` against the definition: tile t's bin is the subsequence of the setups whose
-// box [minx, maxx] x [miny, maxy] meets the tile's pixels, copied whole.
+// box [minx, maxx] x [miny, maxy] meets the tile's pixels, as their entries.
 void expect_bins(const ChunkBins& chunk, const std::vector<TriangleSetup>& setups, const TileGrid& grid) {
     ASSERT_EQ(chunk.offsets.size(), size_t(grid.count()) + 1);
     ASSERT_EQ(chunk.offsets.front(), 0u);
@@ -27,15 +33,16 @@ void expect_bins(const ChunkBins& chunk, const std::vector<TriangleSetup>& setup
     for (int tile = 0; tile < grid.count(); ++tile) {
         const int x0 = (tile % grid.tiles_x) * grid.size, y0 = (tile / grid.tiles_x) * grid.size;
         const int x1 = std::min(x0 + grid.size, grid.width), y1 = std::min(y0 + grid.size, grid.height);
-        const TriangleSetup* e = chunk.begin(tile);
-        for (const TriangleSetup& s : setups) {
+        const uint32_t* e = chunk.begin(tile);
+        for (size_t i = 0; i < setups.size(); ++i) {
+            const TriangleSetup& s = setups[i];
             if (s.maxx < x0 || s.minx >= x1 || s.maxy < y0 || s.miny >= y1) continue;
             ASSERT_LT(e, chunk.end(tile)) << "tile " << tile << " misses triangle " << s.triangle;
-            ASSERT_TRUE(same_setup(*e, s)) << "tile " << tile << ": triangle " << e->triangle << " where "
-                                           << s.triangle << " belongs (submission order)";
+            ASSERT_EQ(*e, kStoredSetup | uint32_t(i)) << "tile " << tile << ": entry " << (*e & ~kStoredSetup)
+                                                      << " where " << i << " belongs (submission order)";
             ++e;
         }
-        ASSERT_EQ(e, chunk.end(tile)) << "tile " << tile << " holds triangle " << e->triangle
+        ASSERT_EQ(e, chunk.end(tile)) << "tile " << tile << " holds setup " << (*e & ~kStoredSetup)
                                       << " whose box does not meet it";
     }
 }
@@ -43,18 +50,19 @@ void expect_bins(const ChunkBins& chunk, const std::vector<TriangleSetup>& setup
 // Every covered pixel of every triangle finds the triangle in its tile's bin.
 void expect_coverage_binned(const ChunkBins& chunk, const std::vector<TriangleSetup>& setups, const TileGrid& grid) {
     const size_t n = setups.size();
-    std::vector<char> binned(size_t(grid.count()) * n, 0);  // [tile][triangle]
+    std::vector<char> binned(size_t(grid.count()) * n, 0);  // [tile][setup]
     for (int tile = 0; tile < grid.count(); ++tile)
-        for (const TriangleSetup* e = chunk.begin(tile); e != chunk.end(tile); ++e) binned[tile * n + e->triangle] = 1;
-    for (const TriangleSetup& s : setups)
+        for (const uint32_t* e = chunk.begin(tile); e != chunk.end(tile); ++e) binned[tile * n + (*e & ~kStoredSetup)] = 1;
+    for (size_t i = 0; i < n; ++i) {
+        const TriangleSetup& s = setups[i];
         for (int y = s.miny; y <= s.maxy; ++y)
             for (int x = s.minx; x <= s.maxx; ++x) {
                 const size_t tile = size_t(y / grid.size) * grid.tiles_x + size_t(x / grid.size);
                 if (test::setup_covers(s, x, y)) {
-                    ASSERT_TRUE(binned[tile * n + s.triangle]) << "pixel (" << x << ", " << y << ") of triangle "
-                                                                << s.triangle;
+                    ASSERT_TRUE(binned[tile * n + i]) << "pixel (" << x << ", " << y << ") of triangle " << s.triangle;
                 }
             }
+    }
 }
 
 TEST(PipelineBin, TileGridCoversTheViewportAndBinningNeedsPowerOfTwoTiles) {
@@ -84,7 +92,7 @@ TEST(PipelineBin, EveryTileGetsExactlyTheTrianglesThatMeetItInSubmissionOrder) {
             test::random_setups(rng, Viewport(w, h), 300, {1, 4, 20, 70, 300, 16000});
         for (int size : {16, 32, 64, 128, 256}) {
             const TileGrid grid(w, h, size);
-            chunk.bin(setups, grid, scratch);
+            chunk.bin(items_of(setups), grid, scratch);
             expect_bins(chunk, setups, grid);
             if (HasFatalFailure()) return;
             expect_coverage_binned(chunk, setups, grid);
@@ -115,7 +123,7 @@ TEST(PipelineBin, BoxesAtTileBorders) {
         setups.push_back(s);
     }
     std::vector<uint32_t> scratch;
-    chunk.bin(setups, grid, scratch);
+    chunk.bin(items_of(setups), grid, scratch);
     expect_bins(chunk, setups, grid);
 
     // No setups: every bin empty.

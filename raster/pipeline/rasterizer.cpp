@@ -13,6 +13,7 @@
 
 #include "raster/core/coverage_layers.h"
 #include "raster/pipeline/bin.h"
+#include "raster/pipeline/deferred_setup.h"
 #include "raster/pipeline/primitive_stage.h"
 #include "raster/core/trace.h"
 
@@ -65,7 +66,7 @@ struct Rasterizer::State {
     std::vector<ChunkBins> chunks;
     std::vector<RasterStats> chunk_stats;
     std::vector<std::vector<uint32_t>> bin_scratch;
-    tbb::enumerable_thread_specific<std::vector<TriangleSetup>> setups;  // a chunk's, until binned
+    tbb::enumerable_thread_specific<std::vector<BinItem>> items;  // a chunk's, until binned
     tbb::enumerable_thread_specific<TileScratch> scratch;
     TileGrid grid;
 };
@@ -73,6 +74,7 @@ struct Rasterizer::State {
 // What for_each_transparent needs to find one tile's triangles again.
 struct TileWork {
     const std::vector<ChunkBins>* chunks;
+    const SetupSource* source;
     int tile;
     std::vector<Fragment>* fragments;
 };
@@ -82,14 +84,12 @@ void TileContext::for_each_transparent(
     std::vector<Fragment>& fragments = *work->fragments;
     const size_t capacity = size_t(width()) * size_t(height()) + simd::kLanes;
     if (fragments.size() < capacity) fragments.resize(capacity);
-    for (const ChunkBins& chunk : *work->chunks) {
-        for (const TriangleSetup* e = chunk.begin(work->tile); e != chunk.end(work->tile); ++e) {
-            const TriangleSetup& t = *e;
-            if (!t.transparent) continue;
+    for (const ChunkBins& chunk : *work->chunks)
+        for_each_setup(chunk, chunk.begin(work->tile), chunk.end(work->tile), *work->source, [&](const TriangleSetup& t) {
+            if (!t.transparent) return;
             const size_t n = rasterize_tested(t, rect, depth, stride, fragments.data());
             if (n) blend(t.triangle, std::span<const Fragment>(fragments.data(), n));
-        }
-    }
+        });
 }
 
 Rasterizer::Rasterizer() : state_(std::make_unique<State>()) {}
@@ -137,12 +137,13 @@ void Rasterizer::render(const Mesh& mesh, const glm::mat4& view_projection, cons
         for (size_t c = r.begin(); c != r.end(); ++c) {
             TraceScope trace("setup+bin chunk", "chunk", int(c));
             ChunkBins& chunk = s.chunks[c];
-            std::vector<TriangleSetup>& setups = s.setups.local();
-            setups.clear();
+            std::vector<BinItem>& items = s.items.local();
+            items.clear();
+            chunk.setups.clear();
             const uint32_t first = uint32_t(c * chunk_size);
             const uint32_t last = uint32_t(std::min(triangle_count, (c + 1) * chunk_size));
-            run_primitive_stage(mesh, s.vertices, viewport, options, first, last, setups, s.chunk_stats[c]);
-            chunk.bin(setups, grid, s.bin_scratch[c]);
+            run_primitive_stage(mesh, s.vertices, viewport, options, first, last, items, chunk.setups, s.chunk_stats[c]);
+            chunk.bin(items, grid, s.bin_scratch[c]);
         }
     });
     const double setup_bin_ms = ms_since(setup_start);
@@ -168,6 +169,7 @@ void Rasterizer::render(const Mesh& mesh, const glm::mat4& view_projection, cons
     visibility.sample_triangle.resize(keep_samples ? visibility.triangle.size() * size_t(samples) : 0);
     visibility.sample_depth.resize(keep_samples ? visibility.depth.size() * size_t(samples) : 0);
     const bool run_passes = color || !passes.empty();
+    const SetupSource source{&mesh, &s.vertices, &viewport, &options};
     std::atomic<uint64_t> visible_pixels{0};
     std::atomic<int64_t> pass_ns{0};
     parallel_for_tiles(grid, [&](int tile, const TileRect& rect) {
@@ -177,12 +179,11 @@ void Rasterizer::render(const Mesh& mesh, const glm::mat4& view_projection, cons
         // Else flush() or the multisampled path below cleared them.
         if (buffers.size != grid.size || buffers.samples != samples) buffers.clear(grid.size, samples);
         for (const ChunkBins& chunk : s.chunks)
-            for (const TriangleSetup* e = chunk.begin(tile); e != chunk.end(tile); ++e) {
-                const TriangleSetup& t = *e;
-                if (t.transparent) continue;
+            for_each_setup(chunk, chunk.begin(tile), chunk.end(tile), source, [&](const TriangleSetup& t) {
+                if (t.transparent) return;
                 if (options.depth_only) rasterize_depth(t, rect, buffers);
                 else rasterize_opaque(t, rect, buffers);
-            }
+            });
 
         const int w = rect.width(), h = rect.height();
         const size_t origin = size_t(rect.y0) * viewport.width + rect.x0;
@@ -202,7 +203,7 @@ void Rasterizer::render(const Mesh& mesh, const glm::mat4& view_projection, cons
             // The passes once per layer of distinct surfaces, resolved into the colour tile.
             const auto pass_start = Clock::now();
             scratch.color.resize(size_t(grid.size) * grid.size);
-            TileWork work{&s.chunks, tile, &scratch.fragments};
+            TileWork work{&s.chunks, &source, tile, &scratch.fragments};
             for (int j = 0; j < scratch.layers.layers(); ++j) {
                 const TileContext context = context_for(scratch.layers.layer(j, options.clear_color), work);
                 for (const TilePass& pass : passes) pass(context);
@@ -222,7 +223,7 @@ void Rasterizer::render(const Mesh& mesh, const glm::mat4& view_projection, cons
             if (stats) visible_pixels += buffers.covered_pixels(w, h);
             if (run_passes) {
                 const auto pass_start = Clock::now();
-                TileWork work{&s.chunks, tile, &scratch.fragments};
+                TileWork work{&s.chunks, &source, tile, &scratch.fragments};
                 Tile tile_part;
                 tile_part.rect = rect;
                 if (options.tile_color) {
@@ -258,7 +259,7 @@ void Rasterizer::render(const Mesh& mesh, const glm::mat4& view_projection, cons
 
         const auto pass_start = Clock::now();
         if (options.tile_color) scratch.color.assign(size_t(grid.size) * grid.size, options.clear_color);
-        TileWork work{&s.chunks, tile, &scratch.fragments};
+        TileWork work{&s.chunks, &source, tile, &scratch.fragments};
         Tile frame_part;
         frame_part.rect = rect;
         frame_part.triangle = visibility.triangle.data() + origin;

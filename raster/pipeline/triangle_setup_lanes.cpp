@@ -1,10 +1,42 @@
 #include "raster/pipeline/triangle_setup_lanes.h"
 
+#include <cstddef>
+
+#include "raster/simd/lane_math.h"
+
 namespace tessera::pipeline {
 
 using simd::kLanes;
 using simd::vint;
 using simd::vmask;
+
+vmask gather_corners(const uint32_t* corners, vint offset, vmask active, size_t readable,
+                     const ProjectedVertex* records, size_t vertex_count, WindowLanes& out, vint& codes) {
+    const int32_t* indices = reinterpret_cast<const int32_t*>(corners);
+    vint index[3];
+    if (readable >= size_t(kLanes) && simd::bits(active & (offset == simd::lane_index())) == simd::bits(active)) {
+        simd::load_interleaved3(indices, index[0], index[1], index[2]);
+    } else {
+        const vint first = simd::select(active, offset * vint(3), vint(0));
+        for (int k = 0; k < 3; ++k) index[k] = simd::gather_int(indices + k, first);
+    }
+    vmask valid = active;
+    for (int k = 0; k < 3; ++k) {
+        // Indices of 2^31 and more read as negative: below the count means valid.
+        valid = valid & (vint(-1) < index[k]) & (index[k] < vint(int32_t(vertex_count)));
+    }
+    static_assert(sizeof(ProjectedVertex) == 4 * sizeof(int32_t) && offsetof(ProjectedVertex, code) == 12);
+    const int32_t* words = reinterpret_cast<const int32_t*>(records);
+    codes = vint(0);
+    for (int k = 0; k < 3; ++k) {
+        const vint record = simd::shift_left<2>(simd::select(valid, index[k], vint(0)));
+        out.X[k] = simd::gather_int(words, record);
+        out.Y[k] = simd::gather_int(words + 1, record);
+        out.z[k] = simd::gather(reinterpret_cast<const float*>(words + 2), record);
+        codes = codes | simd::gather_int(words + 3, record);
+    }
+    return valid;
+}
 
 void SmallSetups::write(int lane, TriangleSetup& t) const {
     for (int i = 0; i < 3; ++i) {
@@ -26,8 +58,12 @@ void SmallSetups::write(int lane, TriangleSetup& t) const {
     t.transparent = 0;
 }
 
-vmask setup_small_triangles(const WindowLanes& v, vmask active, CullMode cull, const Viewport& viewport,
-                            int samples, SmallSetups& out) {
+namespace {
+
+// setup_small_triangles; with kClassify, only as far as classify_small_triangles goes.
+template <bool kClassify>
+vmask small_triangles(const WindowLanes& v, vmask active, CullMode cull, const Viewport& viewport, int samples,
+                      SmallSetups& out) {
     const vint xmin = simd::min(v.X[0], simd::min(v.X[1], v.X[2])), xmax = simd::max(v.X[0], simd::max(v.X[1], v.X[2]));
     const vint ymin = simd::min(v.Y[0], simd::min(v.Y[1], v.Y[2])), ymax = simd::max(v.Y[0], simd::max(v.Y[1], v.Y[2]));
     // Window coordinates lie within 2^22 (fixed_point.h): the extents do not wrap.
@@ -53,6 +89,18 @@ vmask setup_small_triangles(const WindowLanes& v, vmask active, CullMode cull, c
     const vint miny = simd::max((ymin + vint(lo)) >> bits, zero);
     const vint maxy = simd::min((ymax - vint(hi)) >> bits, vint(viewport.height - 1));
     const vmask empty = (maxx < minx) | (maxy < miny);
+    minx.store(out.box[0]), miny.store(out.box[1]), maxx.store(out.box[2]), maxy.store(out.box[3]);
+    const uint32_t set_up = simd::bits(lanes), zero_area = simd::bits(flat);
+    const uint32_t culled_face = simd::bits(culled), no_samples = simd::bits(empty);
+    for (int lane = 0; lane < kLanes; ++lane) {
+        const uint32_t bit = 1u << lane;
+        if (!(set_up & bit)) continue;
+        out.result[lane] = zero_area & bit     ? SetupResult::zero_area
+                           : culled_face & bit ? SetupResult::culled_face
+                           : no_samples & bit  ? SetupResult::no_samples
+                                               : SetupResult::drawn;
+    }
+    if constexpr (kClassify) return andnot(lanes, active);
 
     // E at the first pixel centre P of the box, less one off top-left edges, as F and residue.
     const vint half(kSubpixels / 2);
@@ -67,7 +115,6 @@ vmask setup_small_triangles(const WindowLanes& v, vmask active, CullMode cull, c
         dX.store(out.dx[i]);
         dY.store(out.dy[i]);
     }
-    minx.store(out.box[0]), miny.store(out.box[1]), maxx.store(out.box[2]), maxy.store(out.box[3]);
 
     // The depth planes (DepthPlane::from), for every lane: those of lanes that are not drawn
     // are never read.
@@ -88,18 +135,19 @@ vmask setup_small_triangles(const WindowLanes& v, vmask active, CullMode cull, c
         out.anchor[0][lane] = ax;
         out.anchor[1][lane] = ay;
     }
-
-    const uint32_t set_up = simd::bits(lanes), zero_area = simd::bits(flat);
-    const uint32_t culled_face = simd::bits(culled), no_samples = simd::bits(empty);
-    for (int lane = 0; lane < kLanes; ++lane) {
-        const uint32_t bit = 1u << lane;
-        if (!(set_up & bit)) continue;
-        out.result[lane] = zero_area & bit     ? SetupResult::zero_area
-                           : culled_face & bit ? SetupResult::culled_face
-                           : no_samples & bit  ? SetupResult::no_samples
-                                               : SetupResult::drawn;
-    }
     return andnot(lanes, active);
+}
+
+}  // namespace
+
+vmask classify_small_triangles(const WindowLanes& v, vmask active, CullMode cull, const Viewport& viewport,
+                               int samples, SmallSetups& out) {
+    return small_triangles<true>(v, active, cull, viewport, samples, out);
+}
+
+vmask setup_small_triangles(const WindowLanes& v, vmask active, CullMode cull, const Viewport& viewport,
+                            int samples, SmallSetups& out) {
+    return small_triangles<false>(v, active, cull, viewport, samples, out);
 }
 
 }  // namespace tessera::pipeline

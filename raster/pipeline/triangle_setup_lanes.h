@@ -15,6 +15,7 @@
 #include <cstdint>
 
 #include "raster/pipeline/triangle_setup.h"
+#include "raster/pipeline/vertex_stage.h"
 #include "raster/pipeline/viewport.h"
 #include "raster/simd/simd.h"
 
@@ -26,6 +27,21 @@ struct WindowLanes {
     simd::vint X[3], Y[3];
     simd::vfloat z[3];
 };
+
+// Meshes up to this many vertices have their records gathered in lanes (an int32 lane holds
+// a record's offset in 32-bit words, 4 per record); larger ones are set up by the scalar path.
+inline constexpr size_t kMaxLanesVertices = size_t(1) << 29;
+
+// The corners of kLanes triangles from the vertex stage's records: lane i reads the three
+// indices at corners[3 * offset_i ...] (a triangle's indices, relative to a base the caller
+// chose so that the offsets are small; consecutive offsets 0, 1, 2, ... are read with vector
+// loads when `readable`, the triangles that may be read from the base, is at least kLanes),
+// and, where they are below `vertex_count`, the records of those vertices. Returns the lanes
+// of `active` whose three indices are valid; `codes` is the union of their corners' outcodes
+// (ClipCode). vertex_count must be positive (invalid lanes read vertex 0) and at most
+// kMaxLanesVertices.
+simd::vmask gather_corners(const uint32_t* corners, simd::vint offset, simd::vmask active, size_t readable,
+                           const ProjectedVertex* records, size_t vertex_count, WindowLanes& out, simd::vint& codes);
 
 // The setups of kLanes small triangles, field by field (what setup_small_triangles found).
 struct SmallSetups {
@@ -40,6 +56,11 @@ struct SmallSetups {
     // back through store forwarding, which fails across its narrow fields.
     void write(int lane, TriangleSetup& out) const;
 };
+
+// The part of setup_small_triangles that binning needs: out.result and out.box, not the edge
+// functions and depth planes (v.z is not read).
+simd::vmask classify_small_triangles(const WindowLanes& v, simd::vmask active, CullMode cull, const Viewport& viewport,
+                                     int samples, SmallSetups& out);
 
 // Sets up the triangles of the lanes in `active` that are small. Returns the lanes of `active`
 // it did not set up (a vertex box of kSmallExtent or more: setup_triangle's work). For every
