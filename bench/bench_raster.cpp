@@ -225,6 +225,7 @@ BENCHMARK(BM_Setup)->ArgName("ktris")->Arg(100)->Arg(1000)->Unit(benchmark::kMil
 struct SphereChunk {
     pipeline::ChunkBins chunk;
     std::vector<pipeline::BinItem> items;
+    std::vector<pipeline::TriangleSetup> setups;
 };
 SphereChunk sphere_setups(size_t triangles) {
     const Mesh& mesh = sphere_mesh(triangles);
@@ -236,7 +237,7 @@ SphereChunk sphere_setups(size_t triangles) {
     pipeline::RasterOptions options;
     options.cull = pipeline::CullMode::back;
     pipeline::run_primitive_stage(mesh, vertices, viewport, options, 0, uint32_t(mesh.triangle_count()), s.items,
-                                  s.chunk.setups, stats, /*store_all=*/true);
+                                  s.setups, stats, /*store_all=*/true);
     return s;
 }
 
@@ -249,11 +250,11 @@ void BM_Binning(benchmark::State& state) {
     const TileGrid grid(1920, 1080, tile);
     std::vector<uint32_t> scratch;
     for (auto _ : state) {
-        chunk.bin(s.items, grid, scratch);
+        chunk.bin(s.items, s.setups, grid, scratch);
         benchmark::DoNotOptimize(chunk.entries.data());
     }
     state.counters["tri/s"] =
-        benchmark::Counter(double(chunk.setups.size()), benchmark::Counter::kIsIterationInvariantRate);
+        benchmark::Counter(double(s.setups.size()), benchmark::Counter::kIsIterationInvariantRate);
 }
 BENCHMARK(BM_Binning)
     ->ArgNames({"ktris", "tile"})
@@ -269,20 +270,20 @@ void BM_TileRaster(benchmark::State& state) {
     pipeline::ChunkBins& chunk = s.chunk;
     const TileGrid grid(1920, 1080, tile);
     std::vector<uint32_t> scratch;
-    chunk.bin(s.items, grid, scratch);
+    chunk.bin(s.items, s.setups, grid, scratch);
     pipeline::TileBuffers buffers;
     for (auto _ : state) {
         for (int t = 0; t < grid.count(); ++t) {
             const int tx = t % grid.tiles_x, ty = t / grid.tiles_x;
             const TileRect rect{tx * tile, ty * tile, std::min((tx + 1) * tile, 1920), std::min((ty + 1) * tile, 1080)};
             buffers.clear(tile);
-            for (const uint32_t* e = chunk.begin(t); e != chunk.end(t); ++e)
-                pipeline::rasterize_opaque(chunk.setups[*e & ~pipeline::kStoredSetup], rect, buffers);
+            for (const pipeline::TriangleSetup* e = chunk.stored(t); e != chunk.stored(t) + (chunk.end(t) - chunk.begin(t)); ++e)
+                pipeline::rasterize_opaque(*e, rect, buffers);
             benchmark::DoNotOptimize(buffers.depth.data());
         }
     }
     state.counters["tri/s"] =
-        benchmark::Counter(double(chunk.setups.size()), benchmark::Counter::kIsIterationInvariantRate);
+        benchmark::Counter(double(s.setups.size()), benchmark::Counter::kIsIterationInvariantRate);
 }
 BENCHMARK(BM_TileRaster)
     ->ArgNames({"ktris", "tile"})

@@ -5,6 +5,7 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <cstring>
 #include <stdexcept>
 #include <vector>
 
@@ -16,53 +17,68 @@ namespace {
 
 using test::Rng;
 
-// The bin items of `setups`, each naming its setup (as the primitive stage's stored setups).
-std::vector<BinItem> items_of(const std::vector<TriangleSetup>& setups) {
+// The bin items of `setups` (whose triangle ids are their indices): each names its setup, or
+// with `deferred`, the odd ones are deferred (their triangle id).
+std::vector<BinItem> items_of(const std::vector<TriangleSetup>& setups, bool deferred = false) {
     std::vector<BinItem> items;
-    for (size_t i = 0; i < setups.size(); ++i)
-        items.push_back({kStoredSetup | uint32_t(i), setups[i].minx, setups[i].miny, setups[i].maxx, setups[i].maxy});
+    for (size_t i = 0; i < setups.size(); ++i) {
+        const uint32_t entry = deferred && i % 2 ? setups[i].triangle : kStoredSetup | uint32_t(i);
+        items.push_back({entry, setups[i].minx, setups[i].miny, setups[i].maxx, setups[i].maxy});
+    }
     return items;
 }
 
 // Bins of `chunk` against the definition: tile t's bin is the subsequence of the setups whose
-// box [minx, maxx] x [miny, maxy] meets the tile's pixels, as their entries.
-void expect_bins(const ChunkBins& chunk, const std::vector<TriangleSetup>& setups, const TileGrid& grid) {
+// box [minx, maxx] x [miny, maxy] meets the tile's pixels: stored entries, each beside its
+// setup's copy, or with `deferred` (odd setups), its triangle id.
+void expect_bins(const ChunkBins& chunk, const std::vector<TriangleSetup>& setups, const TileGrid& grid, bool deferred) {
     ASSERT_EQ(chunk.offsets.size(), size_t(grid.count()) + 1);
     ASSERT_EQ(chunk.offsets.front(), 0u);
     ASSERT_EQ(chunk.offsets.back(), chunk.entries.size());
+    ASSERT_EQ(chunk.copy_offsets.back(), chunk.copies.size());
     for (int tile = 0; tile < grid.count(); ++tile) {
         const int x0 = (tile % grid.tiles_x) * grid.size, y0 = (tile / grid.tiles_x) * grid.size;
         const int x1 = std::min(x0 + grid.size, grid.width), y1 = std::min(y0 + grid.size, grid.height);
         const uint32_t* e = chunk.begin(tile);
+        const TriangleSetup* copy = chunk.stored(tile);
         for (size_t i = 0; i < setups.size(); ++i) {
             const TriangleSetup& s = setups[i];
             if (s.maxx < x0 || s.minx >= x1 || s.maxy < y0 || s.miny >= y1) continue;
             ASSERT_LT(e, chunk.end(tile)) << "tile " << tile << " misses triangle " << s.triangle;
-            ASSERT_EQ(*e, kStoredSetup | uint32_t(i)) << "tile " << tile << ": entry " << (*e & ~kStoredSetup)
-                                                      << " where " << i << " belongs (submission order)";
+            if (deferred && i % 2) {
+                ASSERT_EQ(*e, s.triangle) << "tile " << tile << " (submission order)";
+            } else {
+                ASSERT_EQ(*e, kStoredSetup) << "tile " << tile;
+                ASSERT_EQ(std::memcmp(copy, &s, sizeof s), 0) << "tile " << tile << ": setup of triangle "
+                                                             << copy->triangle << " where " << s.triangle
+                                                             << " belongs (submission order)";
+                ++copy;
+            }
             ++e;
         }
-        ASSERT_EQ(e, chunk.end(tile)) << "tile " << tile << " holds setup " << (*e & ~kStoredSetup)
-                                      << " whose box does not meet it";
+        ASSERT_EQ(e, chunk.end(tile)) << "tile " << tile << " holds an entry whose box does not meet it";
+        ASSERT_EQ(copy, tile + 1 < grid.count() ? chunk.stored(tile + 1) : chunk.copies.data() + chunk.copies.size());
     }
 }
 
 // Every covered pixel of every triangle finds the triangle in its tile's bin.
 void expect_coverage_binned(const ChunkBins& chunk, const std::vector<TriangleSetup>& setups, const TileGrid& grid) {
     const size_t n = setups.size();
-    std::vector<char> binned(size_t(grid.count()) * n, 0);  // [tile][setup]
-    for (int tile = 0; tile < grid.count(); ++tile)
-        for (const uint32_t* e = chunk.begin(tile); e != chunk.end(tile); ++e) binned[tile * n + (*e & ~kStoredSetup)] = 1;
-    for (size_t i = 0; i < n; ++i) {
-        const TriangleSetup& s = setups[i];
+    std::vector<char> binned(size_t(grid.count()) * n, 0);  // [tile][triangle]
+    for (int tile = 0; tile < grid.count(); ++tile) {
+        const TriangleSetup* copy = chunk.stored(tile);
+        for (const uint32_t* e = chunk.begin(tile); e != chunk.end(tile); ++e)
+            binned[tile * n + (*e == kStoredSetup ? (copy++)->triangle : *e)] = 1;
+    }
+    for (const TriangleSetup& s : setups)
         for (int y = s.miny; y <= s.maxy; ++y)
             for (int x = s.minx; x <= s.maxx; ++x) {
                 const size_t tile = size_t(y / grid.size) * grid.tiles_x + size_t(x / grid.size);
                 if (test::setup_covers(s, x, y)) {
-                    ASSERT_TRUE(binned[tile * n + i]) << "pixel (" << x << ", " << y << ") of triangle " << s.triangle;
+                    ASSERT_TRUE(binned[tile * n + s.triangle]) << "pixel (" << x << ", " << y << ") of triangle "
+                                                                << s.triangle;
                 }
             }
-    }
 }
 
 TEST(PipelineBin, TileGridCoversTheViewportAndBinningNeedsPowerOfTwoTiles) {
@@ -80,7 +96,7 @@ TEST(PipelineBin, TileGridCoversTheViewportAndBinningNeedsPowerOfTwoTiles) {
     ChunkBins chunk;
     std::vector<uint32_t> scratch;
     for (int bad : {24, 100, 96})
-        EXPECT_THROW(chunk.bin({}, TileGrid(640, 480, bad), scratch), std::invalid_argument) << bad;
+        EXPECT_THROW(chunk.bin({}, {}, TileGrid(640, 480, bad), scratch), std::invalid_argument) << bad;
 }
 
 TEST(PipelineBin, EveryTileGetsExactlyTheTrianglesThatMeetItInSubmissionOrder) {
@@ -92,8 +108,11 @@ TEST(PipelineBin, EveryTileGetsExactlyTheTrianglesThatMeetItInSubmissionOrder) {
             test::random_setups(rng, Viewport(w, h), 300, {1, 4, 20, 70, 300, 16000});
         for (int size : {16, 32, 64, 128, 256}) {
             const TileGrid grid(w, h, size);
-            chunk.bin(items_of(setups), grid, scratch);
-            expect_bins(chunk, setups, grid);
+            for (bool deferred : {false, true}) {
+                chunk.bin(items_of(setups, deferred), setups, grid, scratch);
+                expect_bins(chunk, setups, grid, deferred);
+                if (HasFatalFailure()) return;
+            }
             if (HasFatalFailure()) return;
             expect_coverage_binned(chunk, setups, grid);
             if (HasFatalFailure()) return;
@@ -123,12 +142,12 @@ TEST(PipelineBin, BoxesAtTileBorders) {
         setups.push_back(s);
     }
     std::vector<uint32_t> scratch;
-    chunk.bin(items_of(setups), grid, scratch);
-    expect_bins(chunk, setups, grid);
+    chunk.bin(items_of(setups), setups, grid, scratch);
+    expect_bins(chunk, setups, grid, false);
 
     // No setups: every bin empty.
     ChunkBins none;
-    none.bin({}, grid, scratch);
+    none.bin({}, {}, grid, scratch);
     ASSERT_EQ(none.offsets.size(), size_t(grid.count()) + 1);
     for (int t = 0; t < grid.count(); ++t) EXPECT_EQ(none.begin(t), none.end(t));
 }

@@ -25,20 +25,13 @@ void SetupSource::set_up(const uint32_t* ids, int n, SmallSetups& out) const {
     (void)codes;
 }
 
-void SetupSource::prefetch(const uint32_t* begin, const uint32_t* end, bool indices) const {
-    const uint32_t* corners = mesh->indices.data();
+void SetupSource::prefetch_records(uint32_t entry) const {
+    if (entry & kStoredSetup) return;
+    const uint32_t* triangle = mesh->indices.data() + 3 * size_t(entry);
     const ProjectedVertex* records = vertices->projected.data();
     const size_t vertex_count = vertices->size();
-    for (const uint32_t* e = begin; e < end; ++e) {
-        if (*e & kStoredSetup) continue;
-        const uint32_t* triangle = corners + 3 * size_t(*e);
-        if (indices) {
-            __builtin_prefetch(triangle);
-            continue;
-        }
-        for (int k = 0; k < 3; ++k)
-            if (triangle[k] < vertex_count) __builtin_prefetch(records + triangle[k]);
-    }
+    for (int k = 0; k < 3; ++k)
+        if (triangle[k] < vertex_count) __builtin_prefetch(records + triangle[k]);
 }
 
 }  // namespace tessera::pipeline

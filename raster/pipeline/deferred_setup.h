@@ -1,10 +1,11 @@
-// The tile stage's side of binning (bin.h): the setups of a tile's bin entries, in order. An
-// entry that names a stored setup is that setup; the deferred ones (triangle ids) are set up
+// The tile stage's side of binning (bin.h): the setups of a tile's bin entries, in order. A
+// stored entry is the bin's next setup copy; the deferred ones (triangle ids) are set up
 // again, up to kLanes consecutive ones at a time, from the vertex stage's records with the
 // primitive stage's own lanes setup (triangle_setup_lanes.h), so that each is the setup the
 // primitive stage found drawn, bit for bit.
 #pragma once
 #include <algorithm>
+#include <cstddef>
 #include <cstdint>
 #include <span>
 
@@ -27,36 +28,39 @@ struct SetupSource {
 
     // The setups of the n <= kLanes deferred entries `ids` (ascending, as a bin holds them).
     void set_up(const uint32_t* ids, int n, SmallSetups& out) const;
-    // Prefetches what set_up will read for the deferred entries among [begin, end): their
-    // corner indices (`indices`) or, once those are at hand, their vertex records. The
-    // triangles of a bin may lie anywhere in the mesh (a soup of triangles binned by
-    // position): fetched on demand, each would wait for memory twice.
-    void prefetch(const uint32_t* begin, const uint32_t* end, bool indices) const;
+    // Prefetches what set_up will read for a deferred entry: its corner indices, or, once
+    // those are at hand, its vertex records. The triangles of a bin may lie anywhere in the
+    // mesh (a soup of triangles binned by position): fetched on demand, each would wait for
+    // memory twice.
+    void prefetch_indices(uint32_t entry) const {
+        if (!(entry & kStoredSetup)) __builtin_prefetch(mesh->indices.data() + 3 * size_t(entry));
+    }
+    void prefetch_records(uint32_t entry) const;
     uint8_t transparent(uint32_t id) const {
         return !options->transparent.empty() && options->transparent[id] ? 1 : 0;
     }
 };
 
-// Calls fn(const TriangleSetup&) for every entry in [begin, end) of `chunk`'s bins, in order.
+// Calls fn(const TriangleSetup&) for every entry of `chunk`'s bin of `tile`, in order.
 template <class Fn>
-void for_each_setup(const ChunkBins& chunk, const uint32_t* begin, const uint32_t* end, const SetupSource& source,
-                    Fn&& fn) {
+void for_each_setup(const ChunkBins& chunk, int tile, const SetupSource& source, Fn&& fn) {
+    const uint32_t* begin = chunk.begin(tile);
+    const uint32_t* end = chunk.end(tile);
+    const TriangleSetup* stored = chunk.stored(tile);
     SmallSetups small;
-    // Two batches ahead the corner indices, one batch ahead (indices in cache by then) the
-    // vertex records.
-    constexpr int kAhead = simd::kLanes;
-    source.prefetch(begin, std::min(end, begin + 2 * kAhead), true);
-    source.prefetch(begin, std::min(end, begin + kAhead), false);
-    const uint32_t* fetched = std::min(end, begin + kAhead);  // records prefetched below here
+    // One prefetch of each kind per triangle drawn, spread out so that they do not queue up
+    // for the cache's miss buffers: indices 2 kAhead entries ahead, records kAhead ahead.
+    constexpr ptrdiff_t kAhead = simd::kLanes;
+    for (const uint32_t* p = begin; p < std::min(end, begin + 2 * kAhead); ++p) source.prefetch_indices(*p);
+    for (const uint32_t* p = begin; p < std::min(end, begin + kAhead); ++p) source.prefetch_records(*p);
+    const auto ahead = [&](const uint32_t* p) {
+        if (p + 2 * kAhead < end) source.prefetch_indices(p[2 * kAhead]);
+        if (p + kAhead < end) source.prefetch_records(p[kAhead]);
+    };
     for (const uint32_t* e = begin; e != end;) {
-        if (fetched < end && fetched < e + kAhead) {
-            const uint32_t* next = std::min(end, fetched + kAhead);
-            source.prefetch(std::min(end, fetched + kAhead), std::min(end, next + kAhead), true);
-            source.prefetch(fetched, next, false);
-            fetched = next;
-        }
         if (*e & kStoredSetup) {
-            fn(chunk.setups[*e & ~kStoredSetup]);
+            ahead(e);
+            fn(*stored++);
             ++e;
             continue;
         }
@@ -65,6 +69,7 @@ void for_each_setup(const ChunkBins& chunk, const uint32_t* begin, const uint32_
         while (e != end && !(*e & kStoredSetup) && n < simd::kLanes) ++e, ++n;
         source.set_up(run, n, small);
         for (int lane = 0; lane < n; ++lane) {
+            ahead(run + lane);
             TriangleSetup t;
             small.write(lane, t);
             t.triangle = run[lane];

@@ -4,6 +4,7 @@
 #include "raster/pipeline/triangle_setup_lanes.h"
 
 #include <algorithm>
+#include <bit>
 #include <cstddef>
 
 namespace tessera::pipeline {
@@ -102,6 +103,8 @@ void run_primitive_stage(const Mesh& mesh, const ClipVertices& v, const Viewport
     }
     items.reserve(items.size() + (last - first));
     SmallSetups small;
+    const int tile_shift = std::countr_zero(unsigned(options.tile_size));
+    const int32_t tiles_x = (viewport.width + options.tile_size - 1) / options.tile_size;
     // kLanes triangles at a time: those whose corners all lie inside the guard band, and whose
     // vertex box is small, are set up in lanes (triangle_setup_lanes.h); the others, in
     // submission order between them, by the scalar path.
@@ -114,23 +117,42 @@ void run_primitive_stage(const Mesh& mesh, const ClipVertices& v, const Viewport
                                            mesh.triangle_count() - t, v.projected.data(), vertex_count, w, codes);
         const vmask inside = valid & (codes == vint(0));
         const uint32_t scalar =
-            simd::bits(store_all ? setup_small_triangles(w, inside, options.cull, viewport, options.samples, small)
-                                 : classify_small_triangles(w, inside, options.cull, viewport, options.samples, small));
+            simd::bits(classify_small_triangles(w, inside, options.cull, viewport, options.samples, small));
         const uint32_t fast = simd::bits(inside) & ~scalar, is_valid = simd::bits(valid);
+        // Deferring pays when the tile stage finds a bin's triangles near each other in the
+        // mesh: here, when consecutive drawn triangles mostly fall into the same tile. Where
+        // they scatter over the tiles (a soup), the setups are made now and copied into the
+        // bins, which the tile stage then streams.
+        bool stored = store_all;
+        if (!stored) {
+            int drawn = 0, changes = 0;
+            int32_t previous = -1;
+            for (int lane = 0; lane < n; ++lane) {
+                if (!(fast & (1u << lane)) || small.result[lane] != SetupResult::drawn) continue;
+                const int32_t tile = (small.box[1][lane] >> tile_shift) * tiles_x + (small.box[0][lane] >> tile_shift);
+                changes += drawn > 0 && tile != previous;
+                previous = tile;
+                ++drawn;
+            }
+            stored = 2 * changes > drawn;
+        }
+        if (stored) setup_small_triangles(w, inside, options.cull, viewport, options.samples, small);
         for (int lane = 0; lane < n; ++lane) {
             const uint32_t id = t + uint32_t(lane);
             if (fast & (1u << lane)) {
                 count(small.result[lane], stats);
                 if (small.result[lane] != SetupResult::drawn) continue;
-                if (store_all) {
-                    TriangleSetup setup;
+                const BinItem item{id, int16_t(small.box[0][lane]), int16_t(small.box[1][lane]),
+                                   int16_t(small.box[2][lane]), int16_t(small.box[3][lane])};
+                if (stored) {
+                    // Written in place (SmallSetups::write).
+                    items.push_back({kStoredSetup | uint32_t(setups.size()), item.minx, item.miny, item.maxx, item.maxy});
+                    TriangleSetup& setup = setups.emplace_back();
                     small.write(lane, setup);
                     setup.triangle = id;
                     setup.transparent = transparent(id);
-                    store(setup, items, setups);
                 } else {
-                    items.push_back({id, int16_t(small.box[0][lane]), int16_t(small.box[1][lane]),
-                                     int16_t(small.box[2][lane]), int16_t(small.box[3][lane])});
+                    items.push_back(item);
                 }
             } else if (is_valid & (1u << lane)) {
                 primitive(v, viewport, options, id, indices[3 * size_t(id)], indices[3 * size_t(id) + 1],

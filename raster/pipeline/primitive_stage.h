@@ -18,10 +18,11 @@ namespace tessera::pipeline {
 // Appends a bin item per drawn triangle (or clipped piece) of triangles [first, last) to
 // `items`, in submission order, and adds to the counters of `stats` (triangles, invalid,
 // outside, clipped, zero_area, culled_face, no_samples, setups). Small triangles inside the
-// guard band are set up kLanes at a time (triangle_setup_lanes.h) and binned by id, their
-// setup deferred to the tile stage (deferred_setup.h); the setups of the others are appended
-// to `setups` and their items name them (kStoredSetup). With `store_all`, every setup is
-// stored (for tests and benchmarks of the stages alone).
+// guard band are classified kLanes at a time (triangle_setup_lanes.h) and, where consecutive
+// ones mostly share a tile, binned by id with their setup deferred to the tile stage
+// (deferred_setup.h); the setups of the others are appended to `setups` and their items name
+// them (kStoredSetup). With `store_all`, every setup is stored (for tests and benchmarks of
+// the stages alone).
 void run_primitive_stage(const Mesh& mesh, const ClipVertices& vertices, const Viewport& viewport,
                          const RasterOptions& options, uint32_t first, uint32_t last, std::vector<BinItem>& items,
                          std::vector<TriangleSetup>& setups, RasterStats& stats, bool store_all = false);

@@ -22,6 +22,14 @@ namespace tessera::pipeline {
 namespace {
 
 
+// Per-thread storage of the primitive stage: a chunk's bin items and stored setups until they
+// are binned, and binning's counters; reused chunk after chunk, so they stay in cache.
+struct ChunkScratch {
+    std::vector<BinItem> items;
+    std::vector<TriangleSetup> setups;
+    std::vector<uint32_t> count;
+};
+
 // Per-thread storage of the tile stage, reused across tiles and frames.
 struct TileScratch {
     TileBuffers buffers;
@@ -65,8 +73,7 @@ struct Rasterizer::State {
     ClipVertices vertices;
     std::vector<ChunkBins> chunks;
     std::vector<RasterStats> chunk_stats;
-    std::vector<std::vector<uint32_t>> bin_scratch;
-    tbb::enumerable_thread_specific<std::vector<BinItem>> items;  // a chunk's, until binned
+    tbb::enumerable_thread_specific<ChunkScratch> chunk_scratch;
     tbb::enumerable_thread_specific<TileScratch> scratch;
     TileGrid grid;
 };
@@ -85,7 +92,7 @@ void TileContext::for_each_transparent(
     const size_t capacity = size_t(width()) * size_t(height()) + simd::kLanes;
     if (fragments.size() < capacity) fragments.resize(capacity);
     for (const ChunkBins& chunk : *work->chunks)
-        for_each_setup(chunk, chunk.begin(work->tile), chunk.end(work->tile), *work->source, [&](const TriangleSetup& t) {
+        for_each_setup(chunk, work->tile, *work->source, [&](const TriangleSetup& t) {
             if (!t.transparent) return;
             const size_t n = rasterize_tested(t, rect, depth, stride, fragments.data());
             if (n) blend(t.triangle, std::span<const Fragment>(fragments.data(), n));
@@ -131,19 +138,19 @@ void Rasterizer::render(const Mesh& mesh, const glm::mat4& view_projection, cons
     const size_t chunk_size = std::clamp<size_t>(triangle_count / 64, 4096, 65536);
     const size_t chunk_count = (triangle_count + chunk_size - 1) / chunk_size;
     s.chunks.resize(chunk_count);
-    s.bin_scratch.resize(chunk_count);
     s.chunk_stats.assign(chunk_count, RasterStats{});
     tbb::parallel_for(tbb::blocked_range<size_t>(0, chunk_count, 1), [&](const tbb::blocked_range<size_t>& r) {
         for (size_t c = r.begin(); c != r.end(); ++c) {
             TraceScope trace("setup+bin chunk", "chunk", int(c));
             ChunkBins& chunk = s.chunks[c];
-            std::vector<BinItem>& items = s.items.local();
-            items.clear();
-            chunk.setups.clear();
+            ChunkScratch& scratch = s.chunk_scratch.local();
+            scratch.items.clear();
+            scratch.setups.clear();
             const uint32_t first = uint32_t(c * chunk_size);
             const uint32_t last = uint32_t(std::min(triangle_count, (c + 1) * chunk_size));
-            run_primitive_stage(mesh, s.vertices, viewport, options, first, last, items, chunk.setups, s.chunk_stats[c]);
-            chunk.bin(items, grid, s.bin_scratch[c]);
+            run_primitive_stage(mesh, s.vertices, viewport, options, first, last, scratch.items, scratch.setups,
+                                s.chunk_stats[c]);
+            chunk.bin(scratch.items, scratch.setups, grid, scratch.count);
         }
     });
     const double setup_bin_ms = ms_since(setup_start);
@@ -179,7 +186,7 @@ void Rasterizer::render(const Mesh& mesh, const glm::mat4& view_projection, cons
         // Else flush() or the multisampled path below cleared them.
         if (buffers.size != grid.size || buffers.samples != samples) buffers.clear(grid.size, samples);
         for (const ChunkBins& chunk : s.chunks)
-            for_each_setup(chunk, chunk.begin(tile), chunk.end(tile), source, [&](const TriangleSetup& t) {
+            for_each_setup(chunk, tile, source, [&](const TriangleSetup& t) {
                 if (t.transparent) return;
                 if (options.depth_only) rasterize_depth(t, rect, buffers);
                 else rasterize_opaque(t, rect, buffers);
