@@ -455,7 +455,7 @@ TEST(PipelineTriangleSetup, LanesGiveTheScalarSetupBitForBit) {
         }
         WindowLanes w;
         for (int k = 0; k < 3; ++k) w.X[k] = simd::vint::load(X[k]), w.Y[k] = simd::vint::load(Y[k]), w.z[k] = simd::vfloat::load(z[k]);
-        const uint32_t active = uint32_t(rng.bits()) & ((1u << kLanes) - 1) | 1u;
+        const uint32_t active = (uint32_t(rng.bits()) & ((1u << kLanes) - 1)) | 1u;
         simd::vmask mask = simd::lane_index() < simd::vint(0);
         for (int lane = 0; lane < kLanes; ++lane)
             if (active >> lane & 1) mask = mask | (simd::lane_index() == simd::vint(lane));
