@@ -441,7 +441,7 @@ TEST(PipelineTriangleSetup, LanesGiveTheScalarSetupBitForBit) {
     using simd::kLanes;
     const Viewport viewport(1000, 600);
     Rng rng(16009);
-    size_t drawn = 0, small = 0, big = 0;
+    size_t drawn = 0, small = 0, big = 0, on_edge = 0;
     for (int batch = 0; batch < 3000; ++batch) {
         const int extent = batch % 5 == 0 ? 127 + int(rng.uniform(0, 2)) : int(rng.uniform(1, 140));
         const int margin = batch % 7 == 0 ? 16000 : 40;
@@ -451,6 +451,8 @@ TEST(PipelineTriangleSetup, LanesGiveTheScalarSetupBitForBit) {
         for (int lane = 0; lane < kLanes; ++lane) {
             t[lane] = random_triangle(rng, viewport.width, viewport.height, extent, margin);
             if (lane % 5 == 3) t[lane].v[2] = t[lane].v[1];  // zero area
+            if (lane % 5 == 1)  // corners on pixel centres: edges through centres (on_edge)
+                for (auto& v : t[lane].v) v.X = (v.X & ~(kSubpixels - 1)) | kSubpixels / 2, v.Y = (v.Y & ~(kSubpixels - 1)) | kSubpixels / 2;
             for (int k = 0; k < 3; ++k) X[k][lane] = t[lane].v[k].X, Y[k][lane] = t[lane].v[k].Y, z[k][lane] = t[lane].v[k].z;
         }
         WindowLanes w;
@@ -488,10 +490,13 @@ TEST(PipelineTriangleSetup, LanesGiveTheScalarSetupBitForBit) {
             ASSERT_EQ(std::memcmp(&scalar, &set_up, offsetof(TriangleSetup, triangle)), 0) << "batch " << batch;
             ASSERT_EQ(scalar.small, set_up.small);
             ASSERT_EQ(scalar.transparent, set_up.transparent);
+            ASSERT_EQ(scalar.on_edge, set_up.on_edge) << "batch " << batch << " lane " << lane;
+            on_edge += scalar.on_edge != 0;
             for (int i = 0; i < 3; ++i) ASSERT_EQ(scalar.residue[i], set_up.residue[i]);
         }
     }
     EXPECT_GT(drawn, 5000u);
+    EXPECT_GT(on_edge, 500u);
     EXPECT_GT(big, 1000u);
     EXPECT_GT(small, big);
 }

@@ -56,6 +56,11 @@ void SmallSetups::write(int lane, TriangleSetup& t) const {
     t.maxy = int16_t(box[3][lane]);
     t.small = 1;
     t.transparent = 0;
+    // holds_centres(): holds_sample() at the pixel centre makes setup_triangle's test (a
+    // top-left edge whose constant part is a multiple of 256 that Bezout lets it meet).
+    unsigned on_edge = 0;
+    for (int i = 0; i < 3; ++i) on_edge |= unsigned(holds_sample(t, i, 0, 0)) << i;
+    t.on_edge = uint8_t(on_edge);
 }
 
 namespace {

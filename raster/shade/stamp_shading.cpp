@@ -291,7 +291,8 @@ void shade_stamps(const Shader& shader, const pipeline::TileContext& ctx, Triang
                 if (sx < rect.x1) {
                     const size_t index = buffers.index(sx - rect.x0, y - rect.y0);
                     const vint ids = vint::load(reinterpret_cast<const int32_t*>(&buffers.triangle[index]));
-                    const vfloat depth = vfloat::load(&buffers.depth[index]);
+                    // The tiles hold depth offsets z - 1: window_depth() as the frame's buffer has it.
+                    const vfloat depth = vfloat::load(&buffers.depth[index]) + vfloat(1.0f);
                     colour = shader.shade(ctx, table, ids, depth, vfloat(float(sx)) + lane_x, py,
                                           inside_lanes(sx, y, rect));
                 }
