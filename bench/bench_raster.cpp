@@ -22,6 +22,7 @@
 #include "raster/pipeline/rasterizer.h"
 #include "raster/shade/reference_shading.h"
 #include "raster/shade/stamp_shading.h"
+#include "raster/workloads/sphere_grid.h"
 #include "raster/workloads/test_meshes.h"
 #include "raster/pipeline/vertex_stage.h"
 
@@ -125,24 +126,69 @@ void BM_FramePhong(benchmark::State& state) {
     const int width = 1920, height = 1080;
     tbb::global_control limit(tbb::global_control::max_allowed_parallelism, 1);
     const Camera camera = sphere_view(width, height);
-    std::vector<uint8_t> rgb8(size_t(width) * height * 3);
-    const pipeline::TilePass pass = simd ? shade::make_stamp_shading_pass(shade::ShadeMode::phong, camera, rgb8)
-                               : shade::make_reference_shading_pass(shade::ShadeMode::phong, camera, rgb8);
+    std::vector<uint32_t> rgba8(size_t(width) * height);
+    const pipeline::TilePass pass = simd ? shade::make_stamp_shading_pass(shade::ShadeMode::phong, camera, rgba8)
+                               : shade::make_reference_shading_pass(shade::ShadeMode::phong, camera, rgba8);
     pipeline::Rasterizer rasterizer;
     VisibilityBuffer vis;
     pipeline::RasterOptions options;
     options.cull = pipeline::CullMode::back;
     options.tile_color = !simd;  // what tessera raster does with each pass
+    options.frame_visibility = !simd;
     const pipeline::Viewport viewport(width, height);
     rasterizer.render(mesh, camera.view_projection(), viewport, options, vis, {&pass, 1});  // warm-up
     for (auto _ : state) {
         rasterizer.render(mesh, camera.view_projection(), viewport, options, vis, {&pass, 1});
-        benchmark::DoNotOptimize(rgb8.data());
+        benchmark::DoNotOptimize(rgba8.data());
     }
 }
 BENCHMARK(BM_FramePhong)
     ->ArgNames({"ktris", "simd"})
     ->ArgsProduct({{20, 1000}, {0, 1}})
+    ->Unit(benchmark::kMillisecond)
+    ->MeasureProcessCPUTime()
+    ->UseRealTime();
+
+// tessera raster's frame on the sphere-grid scene (workloads::make_sphere_grid: a ground plane
+// under a grid of spheres, most of the 1080p frame covered), 1 thread, --cull none, split by
+// stage (mode): 0 visibility only (vertex, setup, binning, tile raster; the visibility stays
+// in the tiles, as with the shading passes), 1 --shade id, 2 --shade phong, 3 visibility
+// written to the frame's buffer (what --out-id adds). The differences between modes are the
+// per-pixel costs of the passes; the counters give them per covered pixel and per triangle.
+void BM_FrameSphereGrid(benchmark::State& state) {
+    static std::map<size_t, std::unique_ptr<workloads::SphereGridScene>> cache;
+    const size_t ktris = size_t(state.range(0));
+    auto& slot = cache[ktris];
+    if (!slot) slot = std::make_unique<workloads::SphereGridScene>(workloads::make_sphere_grid(ktris * 1000));
+    const workloads::SphereGridScene& scene = *slot;
+    const int mode = int(state.range(1));
+    const int width = 1920, height = 1080;
+    tbb::global_control limit(tbb::global_control::max_allowed_parallelism, 1);
+    std::vector<uint32_t> rgba8(size_t(width) * height);
+    std::vector<pipeline::TilePass> passes;
+    if (mode == 1) passes.push_back(shade::make_stamp_shading_pass(shade::ShadeMode::id, scene.camera, rgba8));
+    if (mode == 2) passes.push_back(shade::make_stamp_shading_pass(shade::ShadeMode::phong, scene.camera, rgba8));
+    pipeline::Rasterizer rasterizer;
+    VisibilityBuffer vis;
+    pipeline::RasterOptions options;
+    options.tile_color = false;
+    options.frame_visibility = mode == 3;
+    const pipeline::Viewport viewport(width, height);
+    const glm::mat4 vp = scene.camera.view_projection();
+    pipeline::RasterStats stats;
+    rasterizer.render(scene.mesh, vp, viewport, options, vis, passes, nullptr, &stats);  // warm-up
+    for (auto _ : state) {
+        rasterizer.render(scene.mesh, vp, viewport, options, vis, passes);
+        benchmark::DoNotOptimize(rgba8.data());
+    }
+    state.counters["tris"] = double(scene.mesh.triangle_count());
+    state.counters["covered_px"] = double(stats.visible_pixels);
+    state.counters["ns/px"] = benchmark::Counter(1e-9 * double(stats.visible_pixels),
+                                                 benchmark::Counter::kIsIterationInvariantRate | benchmark::Counter::kInvert);
+}
+BENCHMARK(BM_FrameSphereGrid)
+    ->ArgNames({"ktris", "mode"})
+    ->ArgsProduct({{10, 100, 1000}, {0, 1, 2, 3}})
     ->Unit(benchmark::kMillisecond)
     ->MeasureProcessCPUTime()
     ->UseRealTime();
@@ -155,49 +201,60 @@ void BM_Setup(benchmark::State& state) {
     const glm::mat4 vp = sphere_camera(1920, 1080);
     tbb::global_control limit(tbb::global_control::max_allowed_parallelism, 1);
     pipeline::ClipVertices vertices;
+    std::vector<pipeline::BinItem> items;
     std::vector<pipeline::TriangleSetup> setups;
     pipeline::RasterOptions options;
     options.cull = pipeline::CullMode::back;
     for (auto _ : state) {
         pipeline::run_vertex_stage(mesh, vp, viewport, vertices);
+        items.clear();
         setups.clear();
         pipeline::RasterStats stats;
-        pipeline::run_primitive_stage(mesh, vertices, viewport, options, 0, uint32_t(mesh.triangle_count()), setups, stats);
-        benchmark::DoNotOptimize(setups.data());
+        pipeline::run_primitive_stage(mesh, vertices, viewport, options, 0, uint32_t(mesh.triangle_count()), items,
+                                      setups, stats);
+        benchmark::DoNotOptimize(items.data());
     }
     state.counters["tri/s"] =
         benchmark::Counter(double(mesh.triangle_count()), benchmark::Counter::kIsIterationInvariantRate);
 }
 BENCHMARK(BM_Setup)->ArgName("ktris")->Arg(100)->Arg(1000)->Unit(benchmark::kMillisecond)->UseRealTime();
 
-// One chunk holding the back-face-culled setups of the 1080p sphere frame: the input of the
-// binning and tile-stage benchmarks, which measure those stages alone.
-pipeline::ChunkBins sphere_setups(size_t triangles) {
+// The back-face-culled triangles of the 1080p sphere frame as one chunk, every setup stored
+// (no deferred setups): the input of the binning and tile-stage benchmarks, which measure
+// those stages alone.
+struct SphereChunk {
+    pipeline::ChunkBins chunk;
+    std::vector<pipeline::BinItem> items;
+    std::vector<pipeline::TriangleSetup> setups;
+};
+SphereChunk sphere_setups(size_t triangles) {
     const Mesh& mesh = sphere_mesh(triangles);
     const pipeline::Viewport viewport(1920, 1080);
     pipeline::ClipVertices vertices;
     pipeline::run_vertex_stage(mesh, sphere_camera(1920, 1080), viewport, vertices);
-    pipeline::ChunkBins chunk;
+    SphereChunk s;
     pipeline::RasterStats stats;
     pipeline::RasterOptions options;
     options.cull = pipeline::CullMode::back;
-    pipeline::run_primitive_stage(mesh, vertices, viewport, options, 0, uint32_t(mesh.triangle_count()), chunk.setups, stats);
-    return chunk;
+    pipeline::run_primitive_stage(mesh, vertices, viewport, options, 0, uint32_t(mesh.triangle_count()), s.items,
+                                  s.setups, stats, /*store_all=*/true);
+    return s;
 }
 
 // Binning alone, on the setups of one frame.
 void BM_Binning(benchmark::State& state) {
     const size_t triangles = size_t(state.range(0)) * 1000;
     const int tile = int(state.range(1));
-    pipeline::ChunkBins chunk = sphere_setups(triangles);
+    SphereChunk s = sphere_setups(triangles);
+    pipeline::ChunkBins& chunk = s.chunk;
     const TileGrid grid(1920, 1080, tile);
     std::vector<uint32_t> scratch;
     for (auto _ : state) {
-        chunk.bin(grid, scratch);
+        chunk.bin(s.items, s.setups, grid, scratch);
         benchmark::DoNotOptimize(chunk.entries.data());
     }
     state.counters["tri/s"] =
-        benchmark::Counter(double(chunk.setups.size()), benchmark::Counter::kIsIterationInvariantRate);
+        benchmark::Counter(double(s.setups.size()), benchmark::Counter::kIsIterationInvariantRate);
 }
 BENCHMARK(BM_Binning)
     ->ArgNames({"ktris", "tile"})
@@ -209,23 +266,24 @@ BENCHMARK(BM_Binning)
 void BM_TileRaster(benchmark::State& state) {
     const size_t triangles = size_t(state.range(0)) * 1000;
     const int tile = int(state.range(1));
-    pipeline::ChunkBins chunk = sphere_setups(triangles);
+    SphereChunk s = sphere_setups(triangles);
+    pipeline::ChunkBins& chunk = s.chunk;
     const TileGrid grid(1920, 1080, tile);
     std::vector<uint32_t> scratch;
-    chunk.bin(grid, scratch);
+    chunk.bin(s.items, s.setups, grid, scratch);
     pipeline::TileBuffers buffers;
     for (auto _ : state) {
         for (int t = 0; t < grid.count(); ++t) {
             const int tx = t % grid.tiles_x, ty = t / grid.tiles_x;
             const TileRect rect{tx * tile, ty * tile, std::min((tx + 1) * tile, 1920), std::min((ty + 1) * tile, 1080)};
             buffers.clear(tile);
-            for (const pipeline::TriangleSetup* e = chunk.begin(t); e != chunk.end(t); ++e)
+            for (const pipeline::TriangleSetup* e = chunk.stored(t); e != chunk.stored(t) + (chunk.end(t) - chunk.begin(t)); ++e)
                 pipeline::rasterize_opaque(*e, rect, buffers);
             benchmark::DoNotOptimize(buffers.depth.data());
         }
     }
     state.counters["tri/s"] =
-        benchmark::Counter(double(chunk.setups.size()), benchmark::Counter::kIsIterationInvariantRate);
+        benchmark::Counter(double(s.setups.size()), benchmark::Counter::kIsIterationInvariantRate);
 }
 BENCHMARK(BM_TileRaster)
     ->ArgNames({"ktris", "tile"})

@@ -129,11 +129,15 @@ int run(const Options& o) {
     pipeline::RasterOptions options;
     options.cull = cull;
     if (o.tile) options.tile_size = o.tile;
-    options.tile_color = false;  // the pass writes rgb8 itself
+    options.tile_color = false;  // the pass writes rgba8 itself
+    // The frame's visibility buffer only where something reads it after the tiles: the id and
+    // depth files, and the depth view (its grey range spans the whole frame). Otherwise each
+    // tile is shaded from its cache-resident buffers and only finished pixels reach memory.
+    options.frame_visibility = !o.out_id.empty() || !o.out_depth.empty() || shade == shade::ShadeMode::depth;
     pipeline::Rasterizer rasterizer;
     VisibilityBuffer visibility;
-    std::vector<uint8_t> rgb8(size_t(width) * height * 3);
-    const pipeline::TilePass passes[] = {shade::make_stamp_shading_pass(shade, camera, rgb8)};
+    std::vector<uint32_t> rgba8(size_t(width) * height);
+    const pipeline::TilePass passes[] = {shade::make_stamp_shading_pass(shade, camera, rgba8)};
     const glm::mat4 view_projection = camera.view_projection();
 
     const int frames = std::max(1, o.repeat);
@@ -163,10 +167,13 @@ int run(const Options& o) {
         frame_ms.push_back(std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count());
     }
 
-    // The tile pass wrote grey = window depth; the picture maps the visible distances instead.
-    if (shade == shade::ShadeMode::depth) shade::depth_view(visibility, camera, rgb8);
-    if (!o.out_color.empty())
+    if (!o.out_color.empty()) {
+        std::vector<uint8_t> rgb8;
+        // The tile pass wrote grey = window depth; the picture maps the visible distances instead.
+        if (shade == shade::ShadeMode::depth) shade::depth_view(visibility, camera, rgb8);
+        else rgb8 = shade::rgb8_of(rgba8);
         io::write_image(o.out_color, io::ImageView{width, height, 3, io::PixelType::u8, rgb8.data(), /*srgb=*/true});
+    }
     if (!o.out_id.empty()) io::write_tsid(o.out_id, visibility);
     if (!o.out_depth.empty()) io::write_depth_pfm(o.out_depth, visibility);
 

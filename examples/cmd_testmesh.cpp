@@ -5,6 +5,7 @@
 //   tessera testmesh --kind fillrate --leg 10 --count 1048576 --size 1920x1080
 //       --out fill10.obj --camera-out fill10.cam
 //   tessera testmesh --kind sphere --count 1000000 --out sphere.obj --camera-out sphere.cam
+//   tessera testmesh --kind spheres --count 100000 --out grid.obj --camera-out grid.cam
 #include <cmath>
 #include <cstdio>
 #include <string>
@@ -13,6 +14,7 @@
 #include "raster/core/atomic_file.h"
 #include "raster/core/camera.h"
 #include "raster/io/obj_loader.h"
+#include "raster/workloads/sphere_grid.h"
 #include "raster/workloads/test_meshes.h"
 
 namespace tessera::cli {
@@ -49,13 +51,19 @@ int run(const Options& o) {
         mesh = workloads::sphere(segments, rings);
         camera.eye = {0.0f, 0.4f, 2.6f};
         camera.fovy_deg = 50.0f;
+    } else if (o.kind == "spheres") {
+        // The sphere-grid scene (sphere_grid.h): a ground plane under a grid of spheres,
+        // about `count` triangles, seen from above so that most pixels are covered.
+        workloads::SphereGridScene scene = workloads::make_sphere_grid(o.count, camera.aspect);
+        mesh = std::move(scene.mesh);
+        camera = scene.camera;
     } else if (o.kind == "fillrate" || o.kind == "random") {
         const auto window = o.kind == "fillrate"
                                 ? workloads::fill_rate(o.seed, o.count, float(o.leg), width, height)
                                 : workloads::random_triangles(o.seed, o.count, width, height, float(o.leg));
         mesh = workloads::to_world(window, camera.view_projection(), width, height);
     } else {
-        throw UsageError("--kind expects sphere, fillrate or random, got '" + o.kind + "'");
+        throw UsageError("--kind expects sphere, spheres, fillrate or random, got '" + o.kind + "'");
     }
     io::write_obj(o.out, mesh);
     if (!o.camera_out.empty()) write_file_atomically(o.camera_out, camera_text(camera));
@@ -67,7 +75,7 @@ Run define_testmesh(CLI::App& root) {
     auto options = std::make_shared<Options>();
     Options& o = *options;
     CLI::App* cmd = root.add_subcommand("testmesh", "write a procedural benchmark/test mesh as OBJ");
-    cmd->add_option("--kind", o.kind, "sphere | fillrate (MSOC-style right triangles) | random")->default_val("sphere");
+    cmd->add_option("--kind", o.kind, "sphere | spheres (a grid of spheres on a ground plane) | fillrate (MSOC-style right triangles) | random")->default_val("sphere");
     cmd->add_option("--count", o.count, "number of triangles (about, for sphere)")->check(CLI::Range(size_t(1), size_t(1) << 27));
     cmd->add_option("--leg", o.leg, "fillrate: leg length in pixels; random: max edge length")->check(CLI::Range(0.5, 8192.0));
     cmd->add_option("--size", o.size, "image size the screen-space kinds are laid out for")->default_val("1920x1080");

@@ -11,11 +11,14 @@
 #include <array>
 #include <bit>
 #include <cmath>
+#include <cstddef>
+#include <cstring>
 #include <map>
 #include <utility>
 #include <vector>
 
 #include "pipeline_fixtures.h"
+#include "raster/pipeline/triangle_setup_lanes.h"
 #include "raster/pipeline/vertex_stage.h"
 
 namespace tessera::pipeline {
@@ -26,6 +29,8 @@ using test::edge_at;
 using test::is_top_or_left;
 using test::orient;
 using test::pixel_centre;
+using test::random_triangle;
+using test::RandomTriangle;
 using test::Rng;
 using test::setup_covers;
 
@@ -426,6 +431,74 @@ TEST(PipelineTriangleSetup, SmallFlagFollowsTheVertexBox) {
         EXPECT_EQ(bool(t.small), d < kSmallExtent);
         EXPECT_EQ(t.transparent, 0);
     }
+}
+
+// setup_small_triangles gives setup_triangle's result and setup bit for bit on every small
+// triangle, and hands the others back: random triangles of every size around kSmallExtent,
+// across the viewport's edges and out to the guard band, on the half-pixel grid, degenerate,
+// for every cull mode and with one and four samples.
+TEST(PipelineTriangleSetup, LanesGiveTheScalarSetupBitForBit) {
+    using simd::kLanes;
+    const Viewport viewport(1000, 600);
+    Rng rng(16009);
+    size_t drawn = 0, small = 0, big = 0, on_edge = 0;
+    for (int batch = 0; batch < 3000; ++batch) {
+        const int extent = batch % 5 == 0 ? 127 + int(rng.uniform(0, 2)) : int(rng.uniform(1, 140));
+        const int margin = batch % 7 == 0 ? 16000 : 40;
+        RandomTriangle t[kLanes];
+        alignas(64) int32_t X[3][kLanes], Y[3][kLanes];
+        alignas(64) float z[3][kLanes];
+        for (int lane = 0; lane < kLanes; ++lane) {
+            t[lane] = random_triangle(rng, viewport.width, viewport.height, extent, margin);
+            if (lane % 5 == 3) t[lane].v[2] = t[lane].v[1];  // zero area
+            if (lane % 5 == 1)  // corners on pixel centres: edges through centres (on_edge)
+                for (auto& v : t[lane].v) v.X = (v.X & ~(kSubpixels - 1)) | kSubpixels / 2, v.Y = (v.Y & ~(kSubpixels - 1)) | kSubpixels / 2;
+            for (int k = 0; k < 3; ++k) X[k][lane] = t[lane].v[k].X, Y[k][lane] = t[lane].v[k].Y, z[k][lane] = t[lane].v[k].z;
+        }
+        WindowLanes w;
+        for (int k = 0; k < 3; ++k) w.X[k] = simd::vint::load(X[k]), w.Y[k] = simd::vint::load(Y[k]), w.z[k] = simd::vfloat::load(z[k]);
+        const uint32_t active = (uint32_t(rng.bits()) & ((1u << kLanes) - 1)) | 1u;
+        simd::vmask mask = simd::lane_index() < simd::vint(0);
+        for (int lane = 0; lane < kLanes; ++lane)
+            if (active >> lane & 1) mask = mask | (simd::lane_index() == simd::vint(lane));
+        const CullMode cull = CullMode(batch % 3);
+        const int samples = batch % 4 == 1 ? 4 : 1;
+        SmallSetups lanes;
+        const uint32_t rest = simd::bits(setup_small_triangles(w, mask, cull, viewport, samples, lanes));
+        ASSERT_EQ(rest & ~active, 0u);
+        for (int lane = 0; lane < kLanes; ++lane) {
+            if (!(active >> lane & 1)) continue;
+            TriangleSetup scalar;
+            const SetupResult expected = setup_triangle(t[lane].v[0], t[lane].v[1], t[lane].v[2], cull, viewport, scalar, samples);
+            const int32_t w_extent = std::max({t[lane].v[0].X, t[lane].v[1].X, t[lane].v[2].X}) -
+                                     std::min({t[lane].v[0].X, t[lane].v[1].X, t[lane].v[2].X});
+            const int32_t h_extent = std::max({t[lane].v[0].Y, t[lane].v[1].Y, t[lane].v[2].Y}) -
+                                     std::min({t[lane].v[0].Y, t[lane].v[1].Y, t[lane].v[2].Y});
+            const bool is_small = w_extent < kSmallExtent && h_extent < kSmallExtent;
+            ASSERT_EQ(bool(rest >> lane & 1), !is_small) << w_extent << " x " << h_extent;
+            if (!is_small) {
+                ++big;
+                continue;
+            }
+            ++small;
+            ASSERT_EQ(lanes.result[lane], expected) << "batch " << batch << " lane " << lane;
+            if (expected != SetupResult::drawn) continue;
+            ++drawn;
+            TriangleSetup set_up;
+            lanes.write(lane, set_up);
+            scalar.triangle = set_up.triangle = 0;
+            ASSERT_EQ(std::memcmp(&scalar, &set_up, offsetof(TriangleSetup, triangle)), 0) << "batch " << batch;
+            ASSERT_EQ(scalar.small, set_up.small);
+            ASSERT_EQ(scalar.transparent, set_up.transparent);
+            ASSERT_EQ(scalar.on_edge, set_up.on_edge) << "batch " << batch << " lane " << lane;
+            on_edge += scalar.on_edge != 0;
+            for (int i = 0; i < 3; ++i) ASSERT_EQ(scalar.residue[i], set_up.residue[i]);
+        }
+    }
+    EXPECT_GT(drawn, 5000u);
+    EXPECT_GT(on_edge, 500u);
+    EXPECT_GT(big, 1000u);
+    EXPECT_GT(small, big);
 }
 
 // project_and_snap rounds to nearest, ties to even, and gives the vertex stage's bits.

@@ -194,7 +194,8 @@ TEST(Simd, SelectPassesTheChosenLaneThrough) {
 }
 
 // Integer lanes wrap around like the hardware (scalar.h computes in uint32), shift right
-// arithmetically by per-lane counts 0 .. 31, and compare signed.
+// arithmetically by per-lane counts 0 .. 31 (and by constants: left, and right logically),
+// and compare signed.
 TEST(Simd, IntegerArithmeticWrapsAndComparesSigned) {
     Rng rng(11);
     for (int round = 0; round < kRounds; ++round) {
@@ -204,6 +205,11 @@ TEST(Simd, IntegerArithmeticWrapsAndComparesSigned) {
         const vint va = load(a), vb = load(b);
         const Lanes<int32_t> sum = lanes(va + vb), difference = lanes(va - vb), product = lanes(va * vb);
         const Lanes<int32_t> both = lanes(va & vb), either = lanes(va | vb), shifted = lanes(va >> load(s));
+        const Lanes<int32_t> exclusive = lanes(va ^ vb), left = lanes(shift_left<7>(va)),
+                             right = lanes(shift_right_logical<13>(va));
+        const Lanes<int32_t> least = lanes(min(va, vb)), most = lanes(max(va, vb));
+        ASSERT_EQ(first_lane(va), a[0]);
+        for (int i = 0; i < kLanes; ++i) ASSERT_EQ(lane(va, i), a[i]);
         uint32_t ge = 0, lt = 0, eq = 0;
         for (int i = 0; i < kLanes; ++i) {
             ASSERT_EQ(sum[i], int32_t(uint32_t(a[i]) + uint32_t(b[i])));
@@ -212,6 +218,11 @@ TEST(Simd, IntegerArithmeticWrapsAndComparesSigned) {
             ASSERT_EQ(both[i], a[i] & b[i]);
             ASSERT_EQ(either[i], a[i] | b[i]);
             ASSERT_EQ(shifted[i], a[i] >> s[i]) << a[i] << " >> " << s[i];
+            ASSERT_EQ(exclusive[i], a[i] ^ b[i]);
+            ASSERT_EQ(least[i], std::min(a[i], b[i]));
+            ASSERT_EQ(most[i], std::max(a[i], b[i]));
+            ASSERT_EQ(left[i], int32_t(uint32_t(a[i]) << 7));
+            ASSERT_EQ(right[i], int32_t(uint32_t(a[i]) >> 13));
             ge |= uint32_t(a[i] >= b[i]) << i;
             lt |= uint32_t(a[i] < b[i]) << i;
             eq |= uint32_t(a[i] == b[i]) << i;
@@ -302,6 +313,21 @@ TEST(Simd, LoadStoreGatherAndLaneIndex) {
         EXPECT_TRUE(same_bits(splat[i], -kNaN));
         EXPECT_EQ(zero[i], 0);
         EXPECT_EQ(lanes(vfloat())[i], 0.0f);
+    }
+}
+
+TEST(Simd, InterleavedLoadsSplitTheThreeStreams) {
+    std::vector<int32_t> values(3 * kLanes + 5);
+    for (size_t i = 0; i < values.size(); ++i) values[i] = int32_t(i * 7919 + 13);
+    for (int start = 0; start < 5; ++start) {  // unaligned
+        vint a, b, c;
+        load_interleaved3(values.data() + start, a, b, c);
+        const Lanes<int32_t> x = lanes(a), y = lanes(b), z = lanes(c);
+        for (int i = 0; i < kLanes; ++i) {
+            ASSERT_EQ(x[i], values[size_t(start + 3 * i)]);
+            ASSERT_EQ(y[i], values[size_t(start + 3 * i + 1)]);
+            ASSERT_EQ(z[i], values[size_t(start + 3 * i + 2)]);
+        }
     }
 }
 

@@ -26,6 +26,13 @@ struct RasterOptions {
     // depth are found per sample, and the passes run once per distinct surface of a pixel and
     // are resolved into the colour (coverage_layers.h); they need the colour tile.
     int samples = 1;
+    // false: the frame's VisibilityBuffer is not written (left empty at the viewport's size);
+    // each tile's visibility stays in its cache-resident tile buffers, which the passes read
+    // through TileContext::stamps, and no pass may read or write TileContext::triangle/depth
+    // (null). Saves writing 8 bytes per pixel of frame memory, and reading them back, when
+    // the passes produce the output themselves (tessera raster's shading without --out-id or
+    // --out-depth). Single-sampled renders with triangle ids only.
+    bool frame_visibility = true;
     // Multisampled: also keep every sample in VisibilityBuffer::sample_triangle/sample_depth
     // (tests, --out-id); costs 8 bytes per sample of frame memory traffic.
     bool keep_samples = false;

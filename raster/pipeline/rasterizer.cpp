@@ -13,6 +13,7 @@
 
 #include "raster/core/coverage_layers.h"
 #include "raster/pipeline/bin.h"
+#include "raster/pipeline/deferred_setup.h"
 #include "raster/pipeline/primitive_stage.h"
 #include "raster/core/trace.h"
 
@@ -20,6 +21,14 @@ namespace tessera::pipeline {
 
 namespace {
 
+
+// Per-thread storage of the primitive stage: a chunk's bin items and stored setups until they
+// are binned, and binning's counters; reused chunk after chunk, so they stay in cache.
+struct ChunkScratch {
+    std::vector<BinItem> items;
+    std::vector<TriangleSetup> setups;
+    std::vector<uint32_t> count;
+};
 
 // Per-thread storage of the tile stage, reused across tiles and frames.
 struct TileScratch {
@@ -64,7 +73,7 @@ struct Rasterizer::State {
     ClipVertices vertices;
     std::vector<ChunkBins> chunks;
     std::vector<RasterStats> chunk_stats;
-    std::vector<std::vector<uint32_t>> bin_scratch;
+    tbb::enumerable_thread_specific<ChunkScratch> chunk_scratch;
     tbb::enumerable_thread_specific<TileScratch> scratch;
     TileGrid grid;
 };
@@ -72,6 +81,7 @@ struct Rasterizer::State {
 // What for_each_transparent needs to find one tile's triangles again.
 struct TileWork {
     const std::vector<ChunkBins>* chunks;
+    const SetupSource* source;
     int tile;
     std::vector<Fragment>* fragments;
 };
@@ -81,14 +91,12 @@ void TileContext::for_each_transparent(
     std::vector<Fragment>& fragments = *work->fragments;
     const size_t capacity = size_t(width()) * size_t(height()) + simd::kLanes;
     if (fragments.size() < capacity) fragments.resize(capacity);
-    for (const ChunkBins& chunk : *work->chunks) {
-        for (const TriangleSetup* e = chunk.begin(work->tile); e != chunk.end(work->tile); ++e) {
-            const TriangleSetup& t = *e;
-            if (!t.transparent) continue;
+    for (const ChunkBins& chunk : *work->chunks)
+        for_each_setup(chunk, work->tile, *work->source, [&](const TriangleSetup& t) {
+            if (!t.transparent) return;
             const size_t n = rasterize_tested(t, rect, depth, stride, fragments.data());
             if (n) blend(t.triangle, std::span<const Fragment>(fragments.data(), n));
-        }
-    }
+        });
 }
 
 Rasterizer::Rasterizer() : state_(std::make_unique<State>()) {}
@@ -130,18 +138,19 @@ void Rasterizer::render(const Mesh& mesh, const glm::mat4& view_projection, cons
     const size_t chunk_size = std::clamp<size_t>(triangle_count / 64, 4096, 65536);
     const size_t chunk_count = (triangle_count + chunk_size - 1) / chunk_size;
     s.chunks.resize(chunk_count);
-    s.bin_scratch.resize(chunk_count);
     s.chunk_stats.assign(chunk_count, RasterStats{});
     tbb::parallel_for(tbb::blocked_range<size_t>(0, chunk_count, 1), [&](const tbb::blocked_range<size_t>& r) {
         for (size_t c = r.begin(); c != r.end(); ++c) {
             TraceScope trace("setup+bin chunk", "chunk", int(c));
             ChunkBins& chunk = s.chunks[c];
-            chunk.setups.clear();
+            ChunkScratch& scratch = s.chunk_scratch.local();
+            scratch.items.clear();
+            scratch.setups.clear();
             const uint32_t first = uint32_t(c * chunk_size);
             const uint32_t last = uint32_t(std::min(triangle_count, (c + 1) * chunk_size));
-            run_primitive_stage(mesh, s.vertices, viewport, options, first, last, chunk.setups,
+            run_primitive_stage(mesh, s.vertices, viewport, options, first, last, scratch.items, scratch.setups,
                                 s.chunk_stats[c]);
-            chunk.bin(grid, s.bin_scratch[c]);
+            chunk.bin(scratch.items, scratch.setups, grid, scratch.count);
         }
     });
     const double setup_bin_ms = ms_since(setup_start);
@@ -152,9 +161,13 @@ void Rasterizer::render(const Mesh& mesh, const glm::mat4& view_projection, cons
     visibility.height = viewport.height;
     if (options.depth_only && (color || !passes.empty()))
         throw std::invalid_argument("Rasterizer::render: a depth-only render takes no passes or colour");
-    if (options.depth_only) visibility.triangle.clear();
+    if (!options.frame_visibility && (options.depth_only || samples > 1))
+        throw std::invalid_argument("Rasterizer::render: visibility kept in the tiles needs one sample and triangle ids");
+    const bool frame_visibility = options.frame_visibility;
+    if (options.depth_only || !frame_visibility) visibility.triangle.clear();
     else visibility.triangle.resize(size_t(viewport.width) * viewport.height);
-    visibility.depth.resize(size_t(viewport.width) * viewport.height);
+    if (frame_visibility) visibility.depth.resize(size_t(viewport.width) * viewport.height);
+    else visibility.depth.clear();
     if (color && !options.tile_color)
         throw std::invalid_argument("Rasterizer::render: a colour buffer needs RasterOptions::tile_color");
     if (color) color->resize(size_t(viewport.width) * viewport.height);
@@ -163,6 +176,7 @@ void Rasterizer::render(const Mesh& mesh, const glm::mat4& view_projection, cons
     visibility.sample_triangle.resize(keep_samples ? visibility.triangle.size() * size_t(samples) : 0);
     visibility.sample_depth.resize(keep_samples ? visibility.depth.size() * size_t(samples) : 0);
     const bool run_passes = color || !passes.empty();
+    const SetupSource source{&mesh, &s.vertices, &viewport, &options};
     std::atomic<uint64_t> visible_pixels{0};
     std::atomic<int64_t> pass_ns{0};
     parallel_for_tiles(grid, [&](int tile, const TileRect& rect) {
@@ -172,12 +186,11 @@ void Rasterizer::render(const Mesh& mesh, const glm::mat4& view_projection, cons
         // Else flush() or the multisampled path below cleared them.
         if (buffers.size != grid.size || buffers.samples != samples) buffers.clear(grid.size, samples);
         for (const ChunkBins& chunk : s.chunks)
-            for (const TriangleSetup* e = chunk.begin(tile); e != chunk.end(tile); ++e) {
-                const TriangleSetup& t = *e;
-                if (t.transparent) continue;
+            for_each_setup(chunk, tile, source, [&](const TriangleSetup& t) {
+                if (t.transparent) return;
                 if (options.depth_only) rasterize_depth(t, rect, buffers);
                 else rasterize_opaque(t, rect, buffers);
-            }
+            });
 
         const int w = rect.width(), h = rect.height();
         const size_t origin = size_t(rect.y0) * viewport.width + rect.x0;
@@ -197,7 +210,7 @@ void Rasterizer::render(const Mesh& mesh, const glm::mat4& view_projection, cons
             // The passes once per layer of distinct surfaces, resolved into the colour tile.
             const auto pass_start = Clock::now();
             scratch.color.resize(size_t(grid.size) * grid.size);
-            TileWork work{&s.chunks, tile, &scratch.fragments};
+            TileWork work{&s.chunks, &source, tile, &scratch.fragments};
             for (int j = 0; j < scratch.layers.layers(); ++j) {
                 const TileContext context = context_for(scratch.layers.layer(j, options.clear_color), work);
                 for (const TilePass& pass : passes) pass(context);
@@ -208,6 +221,33 @@ void Rasterizer::render(const Mesh& mesh, const glm::mat4& view_projection, cons
                     std::memcpy(color->data() + size_t(rect.y0 + y) * viewport.width + rect.x0,
                                 scratch.color.data() + size_t(y) * grid.size, size_t(w) * sizeof(glm::vec4));
             if (stats) pass_ns += std::chrono::duration_cast<std::chrono::nanoseconds>(Clock::now() - pass_start).count();
+            return;
+        }
+
+        if (!frame_visibility) {
+            // The visibility stays in the tile buffers: the passes read them there, then
+            // they are cleared for the next tile.
+            if (stats) visible_pixels += buffers.covered_pixels(w, h);
+            if (run_passes) {
+                const auto pass_start = Clock::now();
+                TileWork work{&s.chunks, &source, tile, &scratch.fragments};
+                Tile tile_part;
+                tile_part.rect = rect;
+                if (options.tile_color) {
+                    scratch.color.assign(size_t(grid.size) * grid.size, options.clear_color);
+                    tile_part.colour = scratch.color.data();
+                    tile_part.colour_stride = size_t(grid.size);
+                }
+                TileContext context = context_for(tile_part, work);
+                context.stamps = &buffers;
+                for (const TilePass& pass : passes) pass(context);
+                if (color)
+                    for (int y = 0; y < h; ++y)
+                        std::memcpy(color->data() + size_t(rect.y0 + y) * viewport.width + rect.x0,
+                                    scratch.color.data() + size_t(y) * grid.size, size_t(w) * sizeof(glm::vec4));
+                if (stats) pass_ns += std::chrono::duration_cast<std::chrono::nanoseconds>(Clock::now() - pass_start).count();
+            }
+            buffers.clear(grid.size, samples);
             return;
         }
 
@@ -226,7 +266,7 @@ void Rasterizer::render(const Mesh& mesh, const glm::mat4& view_projection, cons
 
         const auto pass_start = Clock::now();
         if (options.tile_color) scratch.color.assign(size_t(grid.size) * grid.size, options.clear_color);
-        TileWork work{&s.chunks, tile, &scratch.fragments};
+        TileWork work{&s.chunks, &source, tile, &scratch.fragments};
         Tile frame_part;
         frame_part.rect = rect;
         frame_part.triangle = visibility.triangle.data() + origin;

@@ -31,6 +31,11 @@ struct TileContext : Tile {
     const Viewport* viewport = nullptr;
     const Mesh* mesh = nullptr;          // the frame's world-space mesh
     const ClipVertices* clip = nullptr;  // its clip-space vertices (barycentrics.h)
+    // The tile's visibility in the rasterizer's stamp layout (TileBuffers, tile_raster.h),
+    // when the render keeps it in the tiles (RasterOptions::frame_visibility false; then
+    // triangle and depth are null); null otherwise. Lanes outside `rect` hold no triangle
+    // a pass may rely on: passes look at the pixels of `rect` only.
+    const TileBuffers* stamps = nullptr;
 
     // Rasterizes this tile's transparent triangles (RasterOptions::transparent) in submission
     // order, each depth-tested (LESS) against `depth` as it is now, without writing it, and

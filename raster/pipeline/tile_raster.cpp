@@ -412,6 +412,20 @@ void TileBuffers::flush(int width, int height, uint32_t* triangle_out, float* de
     if (width < size || height < size) clear(size, samples);
 }
 
+uint64_t TileBuffers::covered_pixels(int width, int height) const {
+    uint64_t n = 0;
+    const vint none{int32_t(kNoTriangle)};
+    for (int sy = 0; sy < height; sy += kStampH)
+        for (int sx = 0; sx < width; sx += kStampW) {
+            vmask inside(true);
+            if (sx + kStampW > width || sy + kStampH > height)
+                inside = (vint(sx) + simd::stamp_x() < vint(width)) & (vint(sy) + simd::stamp_y() < vint(height));
+            const vint ids = vint::load(reinterpret_cast<const int32_t*>(&triangle[index(sx, sy)]));
+            n += uint64_t(std::popcount(simd::bits(andnot(ids == none, inside))));
+        }
+    return n;
+}
+
 void rasterize_opaque(const TriangleSetup& t, const TileRect& tile, TileBuffers& buffers) {
     float* depth = buffers.depth.data();
     uint32_t* ids = buffers.triangle.data();

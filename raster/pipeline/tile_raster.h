@@ -37,6 +37,8 @@ struct TileBuffers {
     // copy's cost once the frame is out of cache. Single-sampled buffers only.
     void flush(int width, int height, uint32_t* triangle_out, float* depth_out, size_t stride,
                bool stream);
+    // How many of the tile's pixels [0, width) x [0, height) hold a triangle.
+    uint64_t covered_pixels(int width, int height) const;
     // Index of tile-local pixel (x, y) in the arrays.
     size_t index(int x, int y) const {
         const int stamp = (y / simd::kStampH) * (size / simd::kStampW) + x / simd::kStampW;

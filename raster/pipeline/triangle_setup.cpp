@@ -14,28 +14,18 @@ WindowVertex project_and_snap(const Viewport& viewport, const glm::vec4& clip) {
 }
 
 DepthPlane DepthPlane::from(const WindowVertex& v0, const WindowVertex& v1, const WindowVertex& v2) {
-    // Plane through (X_i / 256, Y_i / 256, z_i) in pixel units; exact in double for the
-    // integer parts (|X| <= 2^22), so both windings give the same coefficients.
-    const double x1 = double(v1.X - v0.X) / kSubpixels, y1 = double(v1.Y - v0.Y) / kSubpixels;
-    const double x2 = double(v2.X - v0.X) / kSubpixels, y2 = double(v2.Y - v0.Y) / kSubpixels;
-    const double z1 = double(v1.z) - double(v0.z), z2 = double(v2.z) - double(v0.z);
-    const double det = x1 * y2 - x2 * y1;
     DepthPlane p;
     p.ax = int16_t(v0.X >> kSubpixelBits);  // the pixel that holds vertex 0 (floor)
     p.ay = int16_t(v0.Y >> kSubpixelBits);
-    if (det == 0.0) {  // never traversed (zero area), but keep the plane finite
+    const int64_t det = int64_t(v1.X - v0.X) * (v2.Y - v0.Y) - int64_t(v2.X - v0.X) * (v1.Y - v0.Y);
+    if (det == 0) {  // never traversed (zero area), but keep the plane finite
         p.c = float(double(v0.z) - 1.0);
         return p;
     }
-    const double inv_det = 1.0 / det;
-    const double a = (z1 * y2 - z2 * y1) * inv_det;
-    const double b = (x1 * z2 - x2 * z1) * inv_det;
-    // Depth offset at the anchor pixel's centre, rounded once: z_0 - 1 is exact in double.
+    // The anchor pixel's centre, relative to vertex 0 (exact in double).
     const double cx = (double(p.ax) + 0.5) - double(v0.X) / kSubpixels;
     const double cy = (double(p.ay) + 0.5) - double(v0.Y) / kSubpixels;
-    p.a = float(a);
-    p.b = float(b);
-    p.c = float((double(v0.z) - 1.0) + a * cx + b * cy);
+    depth_plane_coefficients(v1.X - v0.X, v1.Y - v0.Y, v2.X - v0.X, v2.Y - v0.Y, v0.z, v1.z, v2.z, cx, cy, p.a, p.b, p.c);
     return p;
 }
 

@@ -65,6 +65,26 @@ struct DepthPlane {
     float edge_step(int32_t dX, int32_t dY) const;
 };
 
+// DepthPlane::from's coefficients for a triangle of non-zero area, on plain numbers: corner
+// 0 at (X0, Y0), the others relative to it, and the anchor pixel's centre relative to it in
+// pixels (cx, cy). Inline so that the lanes setup (triangle_setup_lanes.h) can run it in a loop
+// the compiler vectorises, with the same double operations as from().
+inline void depth_plane_coefficients(int32_t dX1, int32_t dY1, int32_t dX2, int32_t dY2, float z0, float z1, float z2,
+                                     double cx, double cy, float& a, float& b, float& c) {
+    // Plane through (X_i / 256, Y_i / 256, z_i) in pixel units; exact in double for the
+    // integer parts (|X| <= 2^22), so both windings give the same coefficients.
+    const double x1 = double(dX1) / kSubpixels, y1 = double(dY1) / kSubpixels;
+    const double x2 = double(dX2) / kSubpixels, y2 = double(dY2) / kSubpixels;
+    const double dz1 = double(z1) - double(z0), dz2 = double(z2) - double(z0);
+    const double inv_det = 1.0 / (x1 * y2 - x2 * y1);
+    const double da = (dz1 * y2 - dz2 * y1) * inv_det;
+    const double db = (x1 * dz2 - x2 * dz1) * inv_det;
+    a = float(da);
+    b = float(db);
+    // The depth offset at the anchor pixel's centre, rounded once: z0 - 1 is exact in double.
+    c = float((double(z0) - 1.0) + da * cx + db * cy);
+}
+
 enum class CullMode { none, back, front };  // front faces are counter-clockwise in NDC (GL)
 
 // Everything traversal needs for one (possibly clipped) triangle.

@@ -35,10 +35,11 @@ enum class ShadeMode { id, depth, normal, phong };
 ShadeMode parse_shade_mode(const std::string& text);
 
 // A tile pass that shades every pixel of the tile into ctx.colour (linear RGBA, alpha 1; skipped
-// when the rasterizer gives no colour tile) and into `rgb8` (width*height*3 bytes, rows top to
-// bottom, resized by the caller). The scalar definition that the SIMD pass (stamp_shading.h)
-// is tested against.
-pipeline::TilePass make_reference_shading_pass(ShadeMode mode, const Camera& camera, std::vector<uint8_t>& rgb8);
+// when the rasterizer gives no colour tile) and into `rgba8` (width*height pixels, rows top to
+// bottom, sized by the caller; each pixel pack_rgba8 of its 8-bit channels). The scalar
+// definition that the SIMD pass (stamp_shading.h) is tested against. It reads the frame's
+// visibility (RasterOptions::frame_visibility true).
+pipeline::TilePass make_reference_shading_pass(ShadeMode mode, const Camera& camera, std::vector<uint32_t>& rgba8);
 
 // What both shading passes share, so that they read the same inputs bit for bit.
 
@@ -60,6 +61,15 @@ void fetch_triangle_attributes(const pipeline::TileContext& ctx, uint32_t id, Tr
 
 // --shade id: the colour of a triangle id, 8 bits per channel.
 uint32_t id_colour(uint32_t id);
+
+// An opaque 8-bit RGBA pixel as one word: red in the low byte, alpha 255 in the high one (the
+// byte order R, G, B, A in memory on little-endian machines).
+inline uint32_t pack_rgba8(uint8_t r, uint8_t g, uint8_t b) {
+    return uint32_t(r) | uint32_t(g) << 8 | uint32_t(b) << 16 | 0xFF000000u;
+}
+
+// The 8-bit RGB bytes of an RGBA8 frame (what image files of --out-color hold).
+std::vector<uint8_t> rgb8_of(const std::vector<uint32_t>& rgba8);
 
 // round(clamp(c, 0, 1) * 255) as floor(x * 255 + 0.5).
 inline uint8_t quantise(float c) {

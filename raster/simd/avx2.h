@@ -38,7 +38,18 @@ inline vint operator-(vint a, vint b) { return _mm256_sub_epi32(a.v, b.v); }
 inline vint operator*(vint a, vint b) { return _mm256_mullo_epi32(a.v, b.v); }
 inline vint operator&(vint a, vint b) { return _mm256_and_si256(a.v, b.v); }
 inline vint operator|(vint a, vint b) { return _mm256_or_si256(a.v, b.v); }
+inline vint operator^(vint a, vint b) { return _mm256_xor_si256(a.v, b.v); }
+inline vint min(vint a, vint b) { return _mm256_min_epi32(a.v, b.v); }
+inline vint max(vint a, vint b) { return _mm256_max_epi32(a.v, b.v); }
 inline vint operator>>(vint a, vint s) { return _mm256_srav_epi32(a.v, s.v); }
+// Shifts by a constant count in [0, 31]: left, and right filling with zeros (logical).
+template <int N>
+inline vint shift_left(vint a) { return _mm256_slli_epi32(a.v, N); }
+template <int N>
+inline vint shift_right_logical(vint a) { return _mm256_srli_epi32(a.v, N); }
+inline int32_t first_lane(vint a) { return _mm256_cvtsi256_si32(a.v); }
+// Lane i (0 <= i < kLanes), without a round trip through memory.
+inline int32_t lane(vint a, int i) { return _mm256_cvtsi256_si32(_mm256_permutevar8x32_epi32(a.v, _mm256_set1_epi32(i))); }
 inline vmask operator<(vint a, vint b) { return vmask(_mm256_cmpgt_epi32(b.v, a.v)); }
 inline vmask operator>=(vint a, vint b) { return andnot(a < b, vmask(true)); }
 inline vmask operator==(vint a, vint b) { return vmask(_mm256_cmpeq_epi32(a.v, b.v)); }
@@ -90,6 +101,15 @@ inline void store_low_bytes(uint8_t* p, vint a) {
     const uint64_t bytes = uint64_t(uint32_t(_mm256_extract_epi32(low, 0))) |
                            uint64_t(uint32_t(_mm256_extract_epi32(low, 4))) << 32;
     std::memcpy(p, &bytes, 8);
+}
+
+// The three streams of 3 * kLanes consecutive values: a[i] = p[3i], b[i] = p[3i + 1],
+// c[i] = p[3i + 2] (gathered).
+inline void load_interleaved3(const int32_t* p, vint& a, vint& b, vint& c) {
+    const __m256i from = _mm256_mullo_epi32(lane_index().v, _mm256_set1_epi32(3));
+    a = _mm256_i32gather_epi32(p, from, 4);
+    b = _mm256_i32gather_epi32(p + 1, from, 4);
+    c = _mm256_i32gather_epi32(p + 2, from, 4);
 }
 
 // Stores of the lanes selected by `m`: load, blend, store (the tile owns the whole line).

@@ -43,7 +43,18 @@ inline vint operator-(vint a, vint b) { return _mm512_sub_epi32(a.v, b.v); }
 inline vint operator*(vint a, vint b) { return _mm512_mullo_epi32(a.v, b.v); }
 inline vint operator&(vint a, vint b) { return _mm512_and_si512(a.v, b.v); }
 inline vint operator|(vint a, vint b) { return _mm512_or_si512(a.v, b.v); }
+inline vint operator^(vint a, vint b) { return _mm512_xor_si512(a.v, b.v); }
+inline vint min(vint a, vint b) { return _mm512_mask_min_epi32(a.v, kAllLanes, a.v, b.v); }
+inline vint max(vint a, vint b) { return _mm512_mask_max_epi32(a.v, kAllLanes, a.v, b.v); }
 inline vint operator>>(vint a, vint s) { return _mm512_mask_srav_epi32(a.v, kAllLanes, a.v, s.v); }
+// Shifts by a constant count in [0, 31]: left, and right filling with zeros (logical).
+template <int N>
+inline vint shift_left(vint a) { return _mm512_mask_slli_epi32(a.v, kAllLanes, a.v, N); }
+template <int N>
+inline vint shift_right_logical(vint a) { return _mm512_mask_srli_epi32(a.v, kAllLanes, a.v, N); }
+inline int32_t first_lane(vint a) { return _mm512_cvtsi512_si32(a.v); }
+// Lane i (0 <= i < kLanes), without a round trip through memory.
+inline int32_t lane(vint a, int i) { return _mm512_cvtsi512_si32(_mm512_permutexvar_epi32(_mm512_set1_epi32(i), a.v)); }
 inline vmask operator>=(vint a, vint b) { return vmask(_mm512_cmpge_epi32_mask(a.v, b.v)); }
 inline vmask operator<(vint a, vint b) { return vmask(_mm512_cmplt_epi32_mask(a.v, b.v)); }
 inline vmask operator==(vint a, vint b) { return vmask(_mm512_cmpeq_epi32_mask(a.v, b.v)); }
@@ -89,6 +100,21 @@ inline vint bits_of(vfloat a) { return _mm512_castps_si512(a.v); }
 inline vfloat float_of_bits(vint a) { return _mm512_castsi512_ps(a.v); }
 // The low byte of each lane to p[0 .. kLanes) (unaligned).
 inline void store_low_bytes(uint8_t* p, vint a) { _mm_storeu_si128(reinterpret_cast<__m128i*>(p), _mm512_cvtepi32_epi8(a.v)); }
+
+// The three streams of 3 * kLanes consecutive values (unaligned): a[i] = p[3i], b[i] = p[3i + 1],
+// c[i] = p[3i + 2]. Two two-source permutes per stream: the values below p + 32, then the rest.
+inline void load_interleaved3(const int32_t* p, vint& a, vint& b, vint& c) {
+    const __m512i x = _mm512_loadu_si512(p), y = _mm512_loadu_si512(p + 16), z = _mm512_loadu_si512(p + 32);
+    const __m512i lane = _mm512_setr_epi32(0, 1, 2, 3, 4, 5, 6, 7, 8, 9, 10, 11, 12, 13, 14, 15);
+    vint* out[3] = {&a, &b, &c};
+    for (int k = 0; k < 3; ++k) {
+        const __m512i from = _mm512_add_epi32(_mm512_mullo_epi32(lane, _mm512_set1_epi32(3)), _mm512_set1_epi32(k));
+        const __m512i low = _mm512_permutex2var_epi32(x, from, y);  // right where from < 32
+        const __mmask16 high = _mm512_cmpge_epi32_mask(from, _mm512_set1_epi32(32));
+        const __m512i second = _mm512_mask_blend_epi32(high, lane, _mm512_sub_epi32(from, _mm512_set1_epi32(16)));
+        out[k]->v = _mm512_permutex2var_epi32(low, second, z);
+    }
+}
 
 // Aligned stores of the lanes selected by `m`.
 inline void store_masked(float* p, vmask m, vfloat a) { _mm512_mask_store_ps(p, m.m, a.v); }

@@ -35,7 +35,18 @@ inline vint operator-(vint a, vint b) { return vint(int32_t(uint32_t(a.v) - uint
 inline vint operator*(vint a, vint b) { return vint(int32_t(uint32_t(a.v) * uint32_t(b.v))); }
 inline vint operator&(vint a, vint b) { return vint(a.v & b.v); }
 inline vint operator|(vint a, vint b) { return vint(a.v | b.v); }
+inline vint operator^(vint a, vint b) { return vint(a.v ^ b.v); }
+inline vint min(vint a, vint b) { return a.v < b.v ? a : b; }
+inline vint max(vint a, vint b) { return a.v < b.v ? b : a; }
 inline vint operator>>(vint a, vint s) { return vint(a.v >> s.v); }  // arithmetic
+// Shifts by a constant count in [0, 31]: left, and right filling with zeros (logical).
+template <int N>
+inline vint shift_left(vint a) { return vint(int32_t(uint32_t(a.v) << N)); }
+template <int N>
+inline vint shift_right_logical(vint a) { return vint(int32_t(uint32_t(a.v) >> N)); }
+inline int32_t first_lane(vint a) { return a.v; }
+// Lane i (0 <= i < kLanes), without a round trip through memory.
+inline int32_t lane(vint a, int) { return a.v; }
 inline vmask operator>=(vint a, vint b) { return vmask(a.v >= b.v); }
 inline vmask operator<(vint a, vint b) { return vmask(a.v < b.v); }
 inline vmask operator==(vint a, vint b) { return vmask(a.v == b.v); }
@@ -80,6 +91,14 @@ inline vfloat float_of_bits(vint a) {
 }
 // The low byte of each lane to p[0 .. kLanes).
 inline void store_low_bytes(uint8_t* p, vint a) { p[0] = uint8_t(a.v); }
+
+// The three streams of 3 * kLanes consecutive values: a[i] = p[3i], b[i] = p[3i + 1],
+// c[i] = p[3i + 2].
+inline void load_interleaved3(const int32_t* p, vint& a, vint& b, vint& c) {
+    a = vint(p[0]);
+    b = vint(p[1]);
+    c = vint(p[2]);
+}
 
 // Stores the lanes of `a` where `m` is set (the others keep their memory contents).
 inline void store_masked(float* p, vmask m, vfloat a) { if (m.m) p[0] = a.v; }
