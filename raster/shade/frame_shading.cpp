@@ -5,6 +5,7 @@
 
 #include <algorithm>
 #include <bit>
+#include <cstdint>
 #include <stdexcept>
 #include <string>
 
@@ -335,6 +336,9 @@ void FrameShading::shade_tile_surfaces(const Tile& tile) const {
     Lanes lanes;
     uint32_t whole = kNoTriangle;  // see fill_lanes
     CoveredPixel lane_pixel[kLanes];
+    // Triangle ids at or above this have no material (kNoTriangle included: negative as int32).
+    const int32_t material_limit = int32_t(std::min<size_t>(triangle_material.size(), size_t(INT32_MAX)));
+    const float* material_table = reinterpret_cast<const float*>(triangle_material.data());
     for (int y = tile.rect.y0; y < tile.rect.y1; ++y)
         for (int x0 = tile.rect.x0; x0 < tile.rect.x1; x0 += kLanes) {
             const int n = std::min(kLanes, tile.rect.x1 - x0);
@@ -343,7 +347,26 @@ void FrameShading::shade_tile_surfaces(const Tile& tile) const {
             size_t material = material_count;
             bool one_material = true;
             uint32_t previous = kNoTriangle;
-            for (int i = 0; i < n; ++i) {
+            if (!tile.coverage && n == kLanes && material_limit > 0) {
+                // A whole group without coverage: the same decisions in lanes (covered ids, their
+                // materials by a gather; one material when every covered lane has the first
+                // covered lane's), instead of a branch per pixel.
+                alignas(64) int32_t ids[kLanes], mats[kLanes];
+                const simd::vint id = simd::vint::load_unaligned(reinterpret_cast<const int32_t*>(&tile.triangle_at(x0, y)));
+                const simd::vmask on = simd::andnot(id == simd::vint(int32_t(kNoTriangle)), simd::vmask(true));
+                covered = simd::bits(on);
+                if (covered == 0) continue;
+                const simd::vmask known = on & (id >= simd::vint(0)) & (id < simd::vint(material_limit));
+                const simd::vint looked = simd::bits_of(simd::gather(material_table, simd::select(known, id, simd::vint(0))));
+                const simd::vint m = simd::select(known, looked, simd::vint(int32_t(material_count)));
+                id.store(ids);
+                m.store(mats);
+                const int lead = std::countr_zero(covered);
+                material = size_t(uint32_t(mats[lead]));  // material_count when unknown
+                one_material = material < material_count &&
+                               (simd::bits(on & (m == simd::vint(mats[lead]))) == covered);
+                for (int i = 0; i < kLanes; ++i) lane_pixel[i] = {x0 + i, y, uint32_t(ids[i])};
+            } else for (int i = 0; i < n; ++i) {
                 const int x = x0 + i;
                 if (!tile.active(x, y)) continue;
                 const uint32_t id = tile.triangle_at(x, y);
