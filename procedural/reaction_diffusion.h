@@ -6,7 +6,9 @@
 // step t), so the result is bit-identical whatever the tiling or thread count.
 //
 // Parallel over tiles with oneTBB; within a row the interior cells run in a loop GCC
-// vectorises (SIMD over x); the edge cells take the boundary rule. Runs of steps are
+// vectorises (SIMD over x); the edge cells take the boundary rule. A single step goes row by
+// row through each row's left + right neighbour sums, computed once and read by the three
+// rows that need them (same operations, same bits; see reaction_diffusion.cpp). Runs of steps are
 // temporally blocked (4 steps per tile in L2-sized scratch, see reaction_diffusion.cpp), which
 // takes large grids past the DRAM bandwidth limit of one pass per step.
 #pragma once

@@ -118,13 +118,17 @@ TEST(ProceduralRd, BitIdenticalForOneAndTwoThreads) {
     EXPECT_EQ(0, std::memcmp(results[0].b.values.data(), results[1].b.values.data(), results[0].b.size() * 4));
 }
 
-// step(n) fuses steps band by band (temporal blocking); single steps do not. Both compute
-// every cell with the same code from the same neighbours, so they agree bit for bit.
+// step(n) fuses steps band by band (temporal blocking) on grids larger than 256^2 cells;
+// single steps do not, and go row by row through the rows' neighbour pair sums. Both compute
+// every cell with the same float operations on the same neighbours, so they agree bit for bit.
+// 300x260 and 1100x64 take the fused path (full-row tiles, 512-wide x tiles); a dt below 1
+// takes the single steps' kernel that multiplies by Da and dt.
 TEST(ProceduralRd, FusedStepsEqualSingleSteps) {
     for (tp::Boundary boundary : {tp::Boundary::periodic, tp::Boundary::clamped}) {
-        for (auto [w, h] : {std::pair{200, 150}, std::pair{1030, 40}}) {  // row tiles, x tiles
+        for (auto [w, h] : {std::pair{200, 150}, std::pair{1030, 40}, std::pair{300, 260}, std::pair{1100, 64}}) {
             tp::GrayScott g = preset("coral");
             g.boundary = boundary;
+            if (h == 260) g.dt = 0.9f;
             tp::Grid feed(w, h, 0.05f);
             feed.at(w / 2, h / 2) = 0.03f;
             g.feed_map = w > 1000 ? &feed : nullptr;

@@ -589,7 +589,8 @@ void FrameRenderer::Impl::render_region(const FrameState& frame, const Region& r
         const auto t0 = Clock::now();
         const int first = std::max(rows_from, 0), last = std::min(rows_to, h);
         if (first < last)
-            tbb::parallel_for(tbb::blocked_range<int>(first, last, 8), [&](const tbb::blocked_range<int>& rows) {
+            // Bands of 16-32 rows: each band also reads the rows above and below it.
+            tbb::parallel_for(tbb::blocked_range<int>(first, last, 32), [&](const tbb::blocked_range<int>& rows) {
                 const TimedTile tile_time(clock);
                 const TimedPass timed(clock, TilePass::outline);
                 if (rgba8) outlines.run(rgba8->bytes, rows.begin(), rows.end());

@@ -5,6 +5,7 @@
 
 #include <algorithm>
 #include <bit>
+#include <cstdint>
 #include <stdexcept>
 #include <string>
 
@@ -186,6 +187,7 @@ void FrameShading::shade_with(std::span<const CoveredPixel> pixels, std::span<gl
     ctx.lights = state_.lights;
     ctx.eye = eye_;
     Lanes lanes;
+    uint32_t whole = kNoTriangle;  // see fill_lanes
     for (size_t mat = 0; mat < material_count; ++mat) {
         const scene::Material& material = scene_.materials[mat];
         ctx.material = &material;
@@ -200,7 +202,7 @@ void FrameShading::shade_with(std::span<const CoveredPixel> pixels, std::span<gl
             if constexpr (!std::is_same_v<F, float>) {
                 CoveredPixel lane_pixel[kLanes];
                 for (int lane = 0; lane < kLanes; ++lane) lane_pixel[lane] = pixels[order[start + size_t(lane < n ? lane : 0)]];
-                fill_lanes(lane_pixel, needs_uv, needs_colour, lanes);
+                fill_lanes(lane_pixel, needs_uv, needs_colour, lanes, whole);
                 shade::shade_lanes<F>(ctx, lanes, 0);
                 for (int l = 0; l < n; ++l)
                     out[order[start + size_t(l)]] = {lanes.out[0][l], lanes.out[1][l], lanes.out[2][l], lanes.out[3][l]};
@@ -251,12 +253,27 @@ void FrameShading::shade_with(std::span<const CoveredPixel> pixels, std::span<gl
     }
 }
 
-void FrameShading::fill_lanes(const CoveredPixel* lane_pixel, bool needs_uv, bool needs_colour, Lanes& lanes) const {
+void FrameShading::fill_lanes(const CoveredPixel* lane_pixel, bool needs_uv, bool needs_colour, Lanes& lanes,
+                              uint32_t& whole) const {
     // The lanes in runs of one triangle (all of them, on triangles wider than the lanes): each
     // run's corner attributes are broadcast to its lanes with a masked vector store per
     // attribute instead of being written lane by lane; the values are the lane-by-lane path's.
     using F = simd::vfloat;
     const Mesh& mesh = baked_.mesh;
+    // A triangle wider than the lanes covers group after group: its corner attributes, the
+    // side it was drawn from and the barycentric set-up (with its divisions) are already in
+    // every lane from the group before, so only the pixel centres change. The triangle decides the material, hence
+    // needs_uv and needs_colour, so what the lanes hold is what a fill would write.
+    bool same = whole != kNoTriangle;
+    for (int lane = 0; same && lane < kLanes; ++lane) same = lane_pixel[lane].triangle == whole;
+    if (same) {
+        for (int lane = 0; lane < kLanes; ++lane) {
+            lanes.x[lane] = float(lane_pixel[lane].x) + 0.5f;
+            lanes.y[lane] = float(lane_pixel[lane].y) + 0.5f;
+        }
+        return;
+    }
+    whole = kNoTriangle;
     uint32_t setup_for = kNoTriangle;
     pipeline::PerspectiveBarycentrics setup{};
     float drawn = 0.0f;
@@ -270,9 +287,9 @@ void FrameShading::fill_lanes(const CoveredPixel* lane_pixel, bool needs_uv, boo
         }
         const simd::vint index = simd::lane_index();
         const simd::vmask run = (simd::vint(first) < index + simd::vint(1)) & (index < simd::vint(lane));
-        const bool whole = first == 0 && lane == kLanes;
+        const bool whole_run = first == 0 && lane == kLanes;
         const auto fill = [&](float* lanes_of, float v) {
-            if (whole) F(v).store(lanes_of);
+            if (whole_run) F(v).store(lanes_of);
             else simd::store_masked(lanes_of, run, F(v));
         };
         const uint32_t* corner = &mesh.indices[3 * size_t(triangle)];
@@ -300,6 +317,7 @@ void FrameShading::fill_lanes(const CoveredPixel* lane_pixel, bool needs_uv, boo
             if (needs_colour)
                 for (int a = 0; a < 3; ++a) fill(lanes.col[k][a], gouraud_[vi][a]);
         }
+        if (whole_run) whole = triangle;
     }
 }
 
@@ -316,7 +334,11 @@ void FrameShading::shade_tile_surfaces(const Tile& tile) const {
     size_t ctx_for = material_count;
     bool needs_uv = false, needs_colour = false;
     Lanes lanes;
+    uint32_t whole = kNoTriangle;  // see fill_lanes
     CoveredPixel lane_pixel[kLanes];
+    // Triangle ids at or above this have no material (kNoTriangle included: negative as int32).
+    const int32_t material_limit = int32_t(std::min<size_t>(triangle_material.size(), size_t(INT32_MAX)));
+    const float* material_table = reinterpret_cast<const float*>(triangle_material.data());
     for (int y = tile.rect.y0; y < tile.rect.y1; ++y)
         for (int x0 = tile.rect.x0; x0 < tile.rect.x1; x0 += kLanes) {
             const int n = std::min(kLanes, tile.rect.x1 - x0);
@@ -325,7 +347,26 @@ void FrameShading::shade_tile_surfaces(const Tile& tile) const {
             size_t material = material_count;
             bool one_material = true;
             uint32_t previous = kNoTriangle;
-            for (int i = 0; i < n; ++i) {
+            if (!tile.coverage && n == kLanes && material_limit > 0) {
+                // A whole group without coverage: the same decisions in lanes (covered ids, their
+                // materials by a gather; one material when every covered lane has the first
+                // covered lane's), instead of a branch per pixel.
+                alignas(64) int32_t ids[kLanes], mats[kLanes];
+                const simd::vint id = simd::vint::load_unaligned(reinterpret_cast<const int32_t*>(&tile.triangle_at(x0, y)));
+                const simd::vmask on = simd::andnot(id == simd::vint(int32_t(kNoTriangle)), simd::vmask(true));
+                covered = simd::bits(on);
+                if (covered == 0) continue;
+                const simd::vmask known = on & (id >= simd::vint(0)) & (id < simd::vint(material_limit));
+                const simd::vint looked = simd::bits_of(simd::gather(material_table, simd::select(known, id, simd::vint(0))));
+                const simd::vint m = simd::select(known, looked, simd::vint(int32_t(material_count)));
+                id.store(ids);
+                m.store(mats);
+                const int lead = std::countr_zero(covered);
+                material = size_t(uint32_t(mats[lead]));  // material_count when unknown
+                one_material = material < material_count &&
+                               (simd::bits(on & (m == simd::vint(mats[lead]))) == covered);
+                for (int i = 0; i < kLanes; ++i) lane_pixel[i] = {x0 + i, y, uint32_t(ids[i])};
+            } else for (int i = 0; i < n; ++i) {
                 const int x = x0 + i;
                 if (!tile.active(x, y)) continue;
                 const uint32_t id = tile.triangle_at(x, y);
@@ -356,7 +397,7 @@ void FrameShading::shade_tile_surfaces(const Tile& tile) const {
                 needs_colour = m.model == scene::ShadingModel::gouraud;
                 ctx_for = material;
             }
-            fill_lanes(lane_pixel, needs_uv, needs_colour, lanes);
+            fill_lanes(lane_pixel, needs_uv, needs_colour, lanes, whole);
             shade::shade_lanes<simd::vfloat>(ctx, lanes, 0);
             // Opaque surfaces cover the pixel whatever their material's opacity.
             glm::vec4* out = &tile.colour_at(x0, y);

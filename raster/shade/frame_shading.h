@@ -94,8 +94,11 @@ private:
     template <class F>
     void shade_with(std::span<const CoveredPixel> pixels, std::span<glm::vec4> out) const;
     // Fills `lanes` for the kLanes pixels lane_pixel[0 .. kLanes) (one material; idle lanes
-    // repeat a pixel of the group), in runs of one triangle.
-    void fill_lanes(const CoveredPixel* lane_pixel, bool needs_uv, bool needs_colour, struct Lanes& lanes) const;
+    // repeat a pixel of the group), in runs of one triangle. `whole`: the triangle whose
+    // attributes fill every lane of `lanes` (kNoTriangle: none), kept by the caller from one
+    // group to the next; a group all of that triangle only gets its pixel centres written.
+    void fill_lanes(const CoveredPixel* lane_pixel, bool needs_uv, bool needs_colour, struct Lanes& lanes,
+                    uint32_t& whole) const;
 
     const scene::BakedScene& baked_;
     const scene::Scene& scene_;

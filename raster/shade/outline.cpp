@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <bit>
 #include <cmath>
+#include <cstdint>
+#include <cstring>
 
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
@@ -131,26 +133,49 @@ void OutlinePass::run_rows(const Ink& ink, int row_begin, int row_end) const {
         std::vector<int32_t> material, background;
     };
     const size_t padded = size_t(w) + 2 + size_t(kLanes);
-    Row rows[3];
+    thread_local Row rows[3];  // kept from call to call: a band of rows is a few kB of work
+    const auto floats = [](const float* p) { return vfloat::load_unaligned(p); };
+    const auto ints = [](const int32_t* p) { return vint::load_unaligned(p); };
+    const auto put = [](int32_t* p, vint v) { std::memcpy(p, &v, sizeof v); };
+    const vint no(0), none(-1);
+    // Triangle ids at or above this have no material (kNoTriangle included: negative as int32).
+    const int32_t material_limit = int32_t(std::min<size_t>(triangle_material_.size(), size_t(INT32_MAX)));
     const auto load = [&](int y, Row& r) {
-        r.w.assign(padded, 0.0f);
-        r.material.assign(padded, -1);
-        r.background.assign(padded, 0);
+        // Every slot is written below: the padding here, the row's slots by the loops.
+        r.w.resize(padded);
+        r.material.resize(padded);
+        r.background.resize(padded);
+        r.w[0] = 0.0f, r.material[0] = -1, r.background[0] = 0;
+        std::fill(r.w.begin() + w + 1, r.w.end(), 0.0f);
+        std::fill(r.material.begin() + w + 1, r.material.end(), -1);
+        std::fill(r.background.begin() + w + 1, r.background.end(), 0);
         const float* depth = visibility_.depth.data() + size_t(y) * size_t(w);
         const uint32_t* triangle = visibility_.triangle.data() + size_t(y) * size_t(w);
         float* rw = r.w.data() + 1;
         for (int x = 0; x < w; ++x) rw[x] = inverse(depth[x]);  // vectorises (double lanes)
-        for (int x = 0; x < w; ++x) {
+        int32_t* material = r.material.data() + 1;
+        int32_t* background = r.background.data() + 1;
+        int x = 0;
+        if (material_limit > 0) {
+            // The material lookup as a gather, background as a compare: in lanes, the same
+            // values as the loop below.
+            const float* table = reinterpret_cast<const float*>(triangle_material_.data());
+            for (; x + kLanes <= w; x += kLanes) {
+                const vint t = ints(reinterpret_cast<const int32_t*>(triangle + x));
+                const vmask known = (t >= no) & (t < vint(material_limit));
+                put(material + x, simd::select(known, simd::bits_of(simd::gather(table, simd::select(known, t, no))), none));
+                put(background + x, simd::select(floats(depth + x) < vfloat(1.0f), no, none));
+            }
+        }
+        for (; x < w; ++x) {
             const uint32_t t = triangle[x];
-            r.material[size_t(x) + 1] = t < triangle_material_.size() ? int32_t(triangle_material_[t]) : -1;
-            r.background[size_t(x) + 1] = is_background(depth[x]) ? -1 : 0;
+            material[x] = t < triangle_material_.size() ? int32_t(triangle_material_[t]) : -1;
+            background[x] = is_background(depth[x]) ? -1 : 0;
         }
     };
-    const auto floats = [](const float* p) { return vfloat::load_unaligned(p); };
-    const auto ints = [](const int32_t* p) { return vint::load_unaligned(p); };
     const int32_t toon_count = int32_t(toon_.size());
     const vfloat zero(0.0f), step_limit(kOutlineStep);
-    const vint no(0), lanes = simd::lane_index();
+    const vint lanes = simd::lane_index();
     Row* above = &rows[0];
     Row* here = &rows[1];
     Row* below = &rows[2];

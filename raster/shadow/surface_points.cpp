@@ -161,7 +161,34 @@ void gather_surface_points(const Tile& tile, size_t image_width, const Mesh& mes
                 uint32_t on = 0;
                 uint32_t cached = kNoTriangle;
                 int32_t cached_slot = 0;
-                for (int i = 0; i < kLanes; ++i) {
+                if (!tile.centroid && bx + kBlock <= rect.x1 && by + kBlock <= rect.y1) {
+                    // A block inside the tile, at pixel centres: the ids by a gather, centres
+                    // and pixel indices in lanes, and a plane lookup per run of one triangle
+                    // (the values the loop below gives).
+                    const vint lane = simd::lane_index() + vint(first);
+                    const vint lx = lane & vint(kBlock - 1), ly = lane >> vint(2);
+                    static_assert(kBlock == 4, "lane >> 2 is the row in the block");
+                    const vint x = vint(bx) + lx, y = vint(by) + ly;
+                    const vint at = (y - vint(rect.y0)) * vint(int32_t(tile.stride)) + (x - vint(rect.x0));
+                    const vint id = simd::bits_of(simd::gather(reinterpret_cast<const float*>(tile.triangle), at));
+                    (simd::to_float(x) + vfloat(0.5f)).store(xc);
+                    (simd::to_float(y) + vfloat(0.5f)).store(yc);
+                    (y * vint(int32_t(image_width)) + x).store(pixel);
+                    alignas(64) int32_t ids[kLanes];
+                    id.store(ids);
+                    for (int i = 0; i < kLanes; ++i) {
+                        const uint32_t triangle = uint32_t(ids[i]);
+                        slot[i] = 0;
+                        if (triangle == kNoTriangle) continue;
+                        if (triangle != cached) {
+                            cached = triangle;
+                            cached_slot = planes.slot(mesh, triangle);
+                        }
+                        if (planes.length[size_t(cached_slot)] == 0.0f) continue;
+                        slot[i] = cached_slot;
+                        on |= 1u << i;
+                    }
+                } else for (int i = 0; i < kLanes; ++i) {
                     const int x = bx + (first + i) % kBlock, y = by + (first + i) / kBlock;
                     slot[i] = 0;
                     xc[i] = yc[i] = 0.5f;
