@@ -22,6 +22,7 @@
 #include "raster/pipeline/rasterizer.h"
 #include "raster/shade/reference_shading.h"
 #include "raster/shade/stamp_shading.h"
+#include "raster/simd/simd.h"
 #include "raster/workloads/sphere_grid.h"
 #include "raster/workloads/test_meshes.h"
 #include "raster/pipeline/vertex_stage.h"
@@ -192,6 +193,39 @@ BENCHMARK(BM_FrameSphereGrid)
     ->Unit(benchmark::kMillisecond)
     ->MeasureProcessCPUTime()
     ->UseRealTime();
+
+// The lane throughput the per-pixel passes are held against: one thread issuing independent
+// vfloat operations of one kind (op 0: fma, 1: divide, 2: square root) in eight chains, enough
+// to hide each one's latency, so the time per operation is the issue rate of the unit that
+// executes it (an add or multiply issues like an fma). Counters: ns/op, CPU time per
+// kLanes-wide operation; lane_ops/s, that rate times kLanes. The values stay normal (no
+// denormal slow path): the fma chain converges to 1, the divide chain alternates x and 1/x,
+// the root chain converges to 1.
+void BM_LaneThroughput(benchmark::State& state) {
+    using simd::vfloat;
+    constexpr int kChains = 8, kSteps = 256;
+    const int op = int(state.range(0));
+    vfloat x[kChains];
+    for (int c = 0; c < kChains; ++c) x[c] = vfloat(1.5f + 0.125f * float(c));
+    const vfloat half(0.5f), one(1.0f);
+    for (auto _ : state) {
+        for (int step = 0; step < kSteps; ++step) {
+            for (int c = 0; c < kChains; ++c) {
+                switch (op) {
+                    case 0: x[c] = simd::fma(x[c], half, half); break;
+                    case 1: x[c] = one / x[c]; break;
+                    default: x[c] = simd::sqrt(x[c]); break;
+                }
+            }
+        }
+        for (int c = 0; c < kChains; ++c) benchmark::DoNotOptimize(x[c]);
+    }
+    const double ops = double(kChains) * kSteps;
+    state.counters["ns/op"] =
+        benchmark::Counter(1e-9 * ops, benchmark::Counter::kIsIterationInvariantRate | benchmark::Counter::kInvert);
+    state.counters["lane_ops/s"] = benchmark::Counter(ops * simd::kLanes, benchmark::Counter::kIsIterationInvariantRate);
+}
+BENCHMARK(BM_LaneThroughput)->ArgName("op")->DenseRange(0, 2);
 
 // The front end alone: vertex stage + clip/cull/setup of one chunk of every triangle.
 void BM_Setup(benchmark::State& state) {

@@ -9,6 +9,9 @@
 #   sphere-1m (default)   bench_raster's UV sphere, ~1M triangles, --shade phong, --cull back
 #   spheres-1m            1,048,576-triangle field of 1024 small spheres, phong, --cull back
 #   sphere-20k            the same sphere with ~20k triangles (for --memory: small load peak)
+#   sphere-grid-10k sphere-grid-100k sphere-grid-1m sphere-grid-4m
+#                         bench_raster's grid of spheres on a ground plane (BM_FrameSphereGrid),
+#                         ~10k/100k/1M/4M triangles, phong, --cull none (the scene of issue 20)
 #   grid-10px             1,048,576 triangles in 10 px grid quads, back to front, --shade id
 #   fill-10px fill-25px fill-50px fill-100px fill-250px
 #                         MSOC FillrateTest right triangles (counts as in its test), --shade id
@@ -42,7 +45,7 @@ while (($#)); do
     --memory) memory=1; shift ;;
     --cpu) cpu=1; shift ;;
     --no-ids) ids=0; shift ;;
-    -h|--help) sed -n '2,28p' "$0" | sed 's/^# \{0,1\}//'; exit 0 ;;
+    -h|--help) sed -n '2,31p' "$0" | sed 's/^# \{0,1\}//'; exit 0 ;;
     *) echo "peer: unknown argument '$1' (see --help)" >&2; exit 2 ;;
   esac
 done
@@ -69,6 +72,10 @@ workload() {
   case $name in
     sphere-1m)  testmesh=(--kind sphere --count 1048576); shade=phong; cull=back ;;
     sphere-20k) testmesh=(--kind sphere --count 20000); shade=phong; cull=back ;;
+    sphere-grid-10k)  testmesh=(--kind spheres --count 10000); shade=phong; cull=none ;;
+    sphere-grid-100k) testmesh=(--kind spheres --count 100000); shade=phong; cull=none ;;
+    sphere-grid-1m)   testmesh=(--kind spheres --count 1000000); shade=phong; cull=none ;;
+    sphere-grid-4m)   testmesh=(--kind spheres --count 4000000); shade=phong; cull=none ;;
     spheres-1m) gen=(spheres --triangles 1048576); shade=phong; cull=back ;;
     grid-10px)  gen=(grid --triangles 1048576 --pixels 10 --size "$size"); shade=id; cull=none ;;
     fill-10px)  testmesh=(--kind fillrate --count 1048576 --leg 10 --size "$size"); shade=id; cull=none ;;
