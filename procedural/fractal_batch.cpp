@@ -14,6 +14,19 @@ namespace {
 // warp fields): small enough for the stack and L1, large enough to amortise each octave's key.
 constexpr size_t kBlock = 64;
 
+// Divides the sums (and their gradients) by the fractal's total amplitude, as fractal.h's
+// single-point sums do after their octave loop.
+template <bool kGradient>
+void normalise(const Fractal& f, size_t n, float* __restrict value, float* __restrict dx, float* __restrict dy) {
+    const float norm = 1.0f / fractal_amplitude(f);
+    for (size_t i = 0; i < n; ++i) value[i] = value[i] * norm;
+    if constexpr (kGradient)
+        for (size_t i = 0; i < n; ++i) {
+            dx[i] = dx[i] * norm;
+            dy[i] = dy[i] * norm;
+        }
+}
+
 template <bool kGradient, class Lattice>
 void fbm2(const Fractal& f, Lattice lattice, size_t n, const float* __restrict x, const float* __restrict y,
           float* __restrict value, float* __restrict dx, float* __restrict dy) {
@@ -38,13 +51,7 @@ void fbm2(const Fractal& f, Lattice lattice, size_t n, const float* __restrict x
         frequency *= f.lacunarity;
         lattice = lattice.finer(int(f.lacunarity));
     }
-    const float norm = 1.0f / fractal_amplitude(f);
-    for (size_t i = 0; i < n; ++i) value[i] = value[i] * norm;
-    if constexpr (kGradient)
-        for (size_t i = 0; i < n; ++i) {
-            dx[i] = dx[i] * norm;
-            dy[i] = dy[i] * norm;
-        }
+    normalise<kGradient>(f, n, value, dx, dy);
 }
 
 // At most kBlock points.
@@ -85,13 +92,7 @@ void ridged2_block(const Fractal& f, float offset, Lattice lattice, size_t n, co
         frequency *= f.lacunarity;
         lattice = lattice.finer(int(f.lacunarity));
     }
-    const float norm = 1.0f / fractal_amplitude(f);
-    for (size_t i = 0; i < n; ++i) value[i] = value[i] * norm;
-    if constexpr (kGradient)
-        for (size_t i = 0; i < n; ++i) {
-            dx[i] = dx[i] * norm;
-            dy[i] = dy[i] * norm;
-        }
+    normalise<kGradient>(f, n, value, dx, dy);
 }
 
 // At most kBlock points: the two warp fields, the warped points, then the warped fBm.

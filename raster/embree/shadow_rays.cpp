@@ -89,12 +89,24 @@ void set_lanes(PacketRay& packet, int width, const shadow::SurfacePoints& points
         const vfloat scale = vfloat(1.0f) + simd::max(simd::max(magnitude(px), magnitude(py)), magnitude(pz));
         const vfloat step = vfloat(kShadowRayOffset) * scale;
         const vfloat ox = px + nx * step, oy = py + ny * step, oz = pz + nz * step;
-        ox.store(packet.org_x + first);
-        oy.store(packet.org_y + first);
-        oz.store(packet.org_z + first);
-        (vfloat(light.x) - ox).store(packet.dir_x + first);
-        (vfloat(light.y) - oy).store(packet.dir_y + first);
-        (vfloat(light.z) - oz).store(packet.dir_z + first);
+        // A packet narrower than the lanes (RTCRay8 with 16 AVX-512 lanes) takes only its
+        // width, through an aligned copy: its arrays hold `width` floats, aligned to 32 bytes.
+        const int lanes = std::min(simd::kLanes, width - first);
+        const auto put = [&](vfloat v, float* array) {
+            if (lanes == simd::kLanes) {
+                v.store(array + first);
+            } else {
+                alignas(64) float all[simd::kLanes];
+                v.store(all);
+                std::copy_n(all, lanes, array + first);
+            }
+        };
+        put(ox, packet.org_x);
+        put(oy, packet.org_y);
+        put(oz, packet.org_z);
+        put(vfloat(light.x) - ox, packet.dir_x);
+        put(vfloat(light.y) - oy, packet.dir_y);
+        put(vfloat(light.z) - oz, packet.dir_z);
     }
     for (int lane = 0; lane < width; ++lane) {
         packet.tnear[lane] = 0.0f;

@@ -198,20 +198,28 @@ bool cone_may_touch(const RayCone& cone, glm::vec3 centre, float radius) {
 
 }  // namespace
 
-void MetaballField::cull(glm::vec3 eye, std::span<const glm::vec3> corners, MetaballField& subset) const {
+void MetaballField::begin_subset(MetaballField& subset) const {
     subset.style_ = style_;
     subset.blinn_ = blinn_;
     for (auto* v : {&subset.cx_, &subset.cy_, &subset.cz_, &subset.radius_, &subset.inv_r2_, &subset.weight_})
         v->clear();
+}
+
+void MetaballField::copy_ball(size_t b, MetaballField& subset) const {
+    subset.cx_.push_back(cx_[b]);
+    subset.cy_.push_back(cy_[b]);
+    subset.cz_.push_back(cz_[b]);
+    subset.radius_.push_back(radius_[b]);
+    subset.inv_r2_.push_back(inv_r2_[b]);
+    subset.weight_.push_back(weight_[b]);
+}
+
+void MetaballField::cull(glm::vec3 eye, std::span<const glm::vec3> corners, MetaballField& subset) const {
+    begin_subset(subset);
     const RayCone cone = cone_around(eye, corners);
     for (size_t b = 0; b < cx_.size(); ++b) {
         if (!cone_may_touch(cone, {cx_[b], cy_[b], cz_[b]}, radius_[b])) continue;
-        subset.cx_.push_back(cx_[b]);
-        subset.cy_.push_back(cy_[b]);
-        subset.cz_.push_back(cz_[b]);
-        subset.radius_.push_back(radius_[b]);
-        subset.inv_r2_.push_back(inv_r2_[b]);
-        subset.weight_.push_back(weight_[b]);
+        copy_ball(b, subset);
     }
 }
 
@@ -222,11 +230,9 @@ void MetaballField::cull(const RayPacket& rays, float t_far, MetaballPacket& pac
     using simd::vfloat;
     using simd::vmask;
     MetaballField& subset = packet.field_;
-    subset.style_ = style_;
-    subset.blinn_ = blinn_;
-    for (auto* v : {&subset.cx_, &subset.cy_, &subset.cz_, &subset.radius_, &subset.inv_r2_,
-                    &subset.weight_, &packet.centre_norm_, &packet.positive_weight_})
-        v->clear();
+    begin_subset(subset);
+    packet.centre_norm_.clear();
+    packet.positive_weight_.clear();
     packet.closest_.clear();
     packet.miss2_.clear();
     const vfloat ox = vfloat::load(rays.ox), oy = vfloat::load(rays.oy), oz = vfloat::load(rays.oz);
@@ -252,12 +258,7 @@ void MetaballField::cull(const RayPacket& rays, float t_far, MetaballPacket& pac
         const vmask first = simd::andnot(hull0 <= hull1, crosses);
         hull0 = simd::select(crosses, simd::select(first, s0, std_min(hull0, s0)), hull0);
         hull1 = simd::select(crosses, simd::select(first, s1, std_max(hull1, s1)), hull1);
-        subset.cx_.push_back(cx_[b]);
-        subset.cy_.push_back(cy_[b]);
-        subset.cz_.push_back(cz_[b]);
-        subset.radius_.push_back(radius_[b]);
-        subset.inv_r2_.push_back(inv_r2_[b]);
-        subset.weight_.push_back(weight_[b]);
+        copy_ball(b, subset);
         packet.centre_norm_.push_back(glm::length(c));
         packet.positive_weight_.push_back(std::max(weight_[b], 0.0f));
         packet.closest_.emplace_back();

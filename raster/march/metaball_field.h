@@ -76,6 +76,9 @@ private:
     template <class Kernel>
     void accumulate_gradient(const Kernel& kernel, const float* x, const float* y, const float* z, float* gx,
                              float* gy, float* gz) const;
+    // The culled subsets: start empty with this field's style, take ball b of this field.
+    void begin_subset(MetaballField& subset) const;
+    void copy_ball(size_t b, MetaballField& subset) const;
 
     MetaballStyle style_;
     BlinnKernel blinn_;

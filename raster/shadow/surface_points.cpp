@@ -161,6 +161,18 @@ void gather_surface_points(const Tile& tile, size_t image_width, const Mesh& mes
                 uint32_t on = 0;
                 uint32_t cached = kNoTriangle;
                 int32_t cached_slot = 0;
+                // Lane i shows `triangle`: its plane's slot (one lookup per run of a triangle),
+                // and the lane is on unless the triangle is degenerate (no plane).
+                const auto take = [&](int i, uint32_t triangle) {
+                    if (triangle != cached) {
+                        cached = triangle;
+                        cached_slot = planes.slot(mesh, triangle);
+                    }
+                    if (planes.length[size_t(cached_slot)] == 0.0f) return false;
+                    slot[i] = cached_slot;
+                    on |= 1u << i;
+                    return true;
+                };
                 if (!tile.centroid && bx + kBlock <= rect.x1 && by + kBlock <= rect.y1) {
                     // A block inside the tile, at pixel centres: the ids by a gather, centres
                     // and pixel indices in lanes, and a plane lookup per run of one triangle
@@ -179,14 +191,7 @@ void gather_surface_points(const Tile& tile, size_t image_width, const Mesh& mes
                     for (int i = 0; i < kLanes; ++i) {
                         const uint32_t triangle = uint32_t(ids[i]);
                         slot[i] = 0;
-                        if (triangle == kNoTriangle) continue;
-                        if (triangle != cached) {
-                            cached = triangle;
-                            cached_slot = planes.slot(mesh, triangle);
-                        }
-                        if (planes.length[size_t(cached_slot)] == 0.0f) continue;
-                        slot[i] = cached_slot;
-                        on |= 1u << i;
+                        if (triangle != kNoTriangle) take(i, triangle);
                     }
                 } else for (int i = 0; i < kLanes; ++i) {
                     const int x = bx + (first + i) % kBlock, y = by + (first + i) / kBlock;
@@ -194,15 +199,8 @@ void gather_surface_points(const Tile& tile, size_t image_width, const Mesh& mes
                     xc[i] = yc[i] = 0.5f;
                     if (x >= rect.x1 || y >= rect.y1) continue;
                     const uint32_t triangle = tile.triangle_at(x, y);
-                    if (triangle == kNoTriangle) continue;
-                    if (triangle != cached) {
-                        cached = triangle;
-                        cached_slot = planes.slot(mesh, triangle);
-                    }
-                    if (planes.length[size_t(cached_slot)] == 0.0f) continue;
-                    slot[i] = cached_slot;
+                    if (triangle == kNoTriangle || !take(i, triangle)) continue;
                     pixel[i] = int32_t(size_t(y) * image_width + size_t(x));
-                    on |= 1u << i;
                     if (tile.centroid) {  // a point on the surface (coverage_layers.h)
                         const glm::vec2 at = tile.centroid[tile.offset(x, y)];
                         xc[i] = float(x) + 0.5f + at.x;
