@@ -50,12 +50,15 @@ void for_each_setup(const ChunkBins& chunk, int tile, const SetupSource& source,
     SmallSetups small;
     // One prefetch of each kind per triangle drawn, spread out so that they do not queue up
     // for the cache's miss buffers: indices 2 kAhead entries ahead, records kAhead ahead.
+    // (Counts, not pointers past the bin: an empty bin's pointers are null.)
     constexpr ptrdiff_t kAhead = simd::kLanes;
-    for (const uint32_t* p = begin; p < std::min(end, begin + 2 * kAhead); ++p) source.prefetch_indices(*p);
-    for (const uint32_t* p = begin; p < std::min(end, begin + kAhead); ++p) source.prefetch_records(*p);
+    const ptrdiff_t count = end - begin;
+    for (ptrdiff_t i = 0; i < std::min(count, 2 * kAhead); ++i) source.prefetch_indices(begin[i]);
+    for (ptrdiff_t i = 0; i < std::min(count, kAhead); ++i) source.prefetch_records(begin[i]);
     const auto ahead = [&](const uint32_t* p) {
-        if (p + 2 * kAhead < end) source.prefetch_indices(p[2 * kAhead]);
-        if (p + kAhead < end) source.prefetch_records(p[kAhead]);
+        const ptrdiff_t left = end - p;
+        if (2 * kAhead < left) source.prefetch_indices(p[2 * kAhead]);
+        if (kAhead < left) source.prefetch_records(p[kAhead]);
     };
     for (const uint32_t* e = begin; e != end;) {
         if (*e & kStoredSetup) {
