@@ -14,17 +14,21 @@ namespace {
 // warp fields): small enough for the stack and L1, large enough to amortise each octave's key.
 constexpr size_t kBlock = 64;
 
-// Divides the sums (and their gradients) by the fractal's total amplitude, as fractal.h's
-// single-point sums do after their octave loop.
+// Divides the sums (and their gradients; dz only for 3-D sums) by the fractal's total
+// amplitude, as fractal.h's single-point sums do after their octave loop.
 template <bool kGradient>
-void normalise(const Fractal& f, size_t n, float* __restrict value, float* __restrict dx, float* __restrict dy) {
+void normalise(const Fractal& f, size_t n, float* __restrict value, float* __restrict dx, float* __restrict dy,
+               float* __restrict dz = nullptr) {
     const float norm = 1.0f / fractal_amplitude(f);
     for (size_t i = 0; i < n; ++i) value[i] = value[i] * norm;
-    if constexpr (kGradient)
+    if constexpr (kGradient) {
         for (size_t i = 0; i < n; ++i) {
             dx[i] = dx[i] * norm;
             dy[i] = dy[i] * norm;
         }
+        if (dz)
+            for (size_t i = 0; i < n; ++i) dz[i] = dz[i] * norm;
+    }
 }
 
 template <bool kGradient, class Lattice>
@@ -223,14 +227,7 @@ void fbm3(const Fractal& f, size_t n, const float* __restrict x, const float* __
         amplitude *= f.gain;
         frequency *= f.lacunarity;
     }
-    const float norm = 1.0f / fractal_amplitude(f);
-    for (size_t i = 0; i < n; ++i) value[i] = value[i] * norm;
-    if constexpr (kGradient)
-        for (size_t i = 0; i < n; ++i) {
-            dx[i] = dx[i] * norm;
-            dy[i] = dy[i] * norm;
-            dz[i] = dz[i] * norm;
-        }
+    normalise<kGradient>(f, n, value, dx, dy, dz);
 }
 
 }  // namespace
