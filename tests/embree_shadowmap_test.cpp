@@ -23,6 +23,17 @@ namespace {
 
 const glm::vec3 kUp{0.0f, 1.0f, 0.0f};
 
+// The 20,000-triangle sphere grid rasterized at w x h: the frame several tests below read.
+struct RasterizedGrid {
+    workloads::SphereGridScene grid = workloads::make_sphere_grid(20000);
+    glm::mat4 vp = grid.camera.view_projection();
+    pipeline::Rasterizer rasterizer;
+    VisibilityBuffer vis;
+    RasterizedGrid(int w, int h) {
+        rasterizer.render(grid.mesh, vp, pipeline::Viewport(w, h), pipeline::RasterOptions{}, vis);
+    }
+};
+
 Mesh ground_and_occluder() {
     Mesh mesh;
     workloads::append_ground(mesh, 0.0f, 0.0f, 0.0f, 10.0f, 4);
@@ -102,11 +113,8 @@ TEST(ShadowMap, WithoutBiasThePlaneHasAcne) {
 }
 
 TEST(ShadowMap, AgreesWithEmbreeShadowRaysOnTheSphereGrid) {
-    const workloads::SphereGridScene grid = workloads::make_sphere_grid(20000);
-    const glm::mat4 vp = grid.camera.view_projection();
-    pipeline::Rasterizer rasterizer;
-    VisibilityBuffer vis;
-    rasterizer.render(grid.mesh, vp, pipeline::Viewport(640, 360), pipeline::RasterOptions{}, vis);
+    RasterizedGrid frame(640, 360);
+    auto& [grid, vp, rasterizer, vis] = frame;
     const std::vector<glm::vec3> lights = {grid.light};
     const std::vector<ShadowMap> maps = {ShadowMap(rasterizer, grid.mesh, grid.light)};
     const LightMask by_map = compute_light_mask(vis, grid.mesh, vp, lights, shadow_map_test(maps));
@@ -164,12 +172,9 @@ TEST(ShadowMap, BrokenTrianglesAreSkippedAndTheFrameStillRenders) {
 // surface point of a sphere-grid frame, and on random points and normals around the scene
 // (outside the map, behind the light, on its edges), for several PCF radii and map sizes.
 TEST(ShadowMap, SimdLookupEqualsScalarReference) {
-    const workloads::SphereGridScene grid = workloads::make_sphere_grid(20000);
-    const glm::mat4 vp = grid.camera.view_projection();
-    pipeline::Rasterizer rasterizer;
-    VisibilityBuffer vis;
     const int w = 320, h = 180;
-    rasterizer.render(grid.mesh, vp, pipeline::Viewport(w, h), pipeline::RasterOptions{}, vis);
+    RasterizedGrid frame(w, h);
+    auto& [grid, vp, rasterizer, vis] = frame;
     SurfacePoints points;
     gather_surface_points(vis, grid.mesh, PixelRays(vp, w, h), TileRect{0, 0, w, h}, points);
     const size_t from_frame = points.size();
@@ -211,12 +216,9 @@ TEST(ShadowMap, SimdLookupEqualsScalarReference) {
 // tile's edge), with lights above, beside and below the scene; and the batched pixel rays
 // equal ray() one by one.
 TEST(SurfacePoints, LanesEqualTheReferenceAndFacingBitsTheTest) {
-    const workloads::SphereGridScene grid = workloads::make_sphere_grid(20000);
-    const glm::mat4 vp = grid.camera.view_projection();
-    pipeline::Rasterizer rasterizer;
-    VisibilityBuffer vis;
     const int w = 203, h = 117;
-    rasterizer.render(grid.mesh, vp, pipeline::Viewport(w, h), pipeline::RasterOptions{}, vis);
+    RasterizedGrid frame(w, h);
+    auto& [grid, vp, rasterizer, vis] = frame;
     const PixelRays rays(vp, w, h);
     const glm::vec3 lights[] = {grid.light, {-40.0f, 3.0f, 10.0f}, {5.0f, -30.0f, 0.0f}};
     size_t points_seen = 0;

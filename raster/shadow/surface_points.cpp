@@ -49,12 +49,8 @@ void gather_surface_points(const VisibilityBuffer& visibility, const Mesh& mesh,
 
 void gather_surface_points_reference(const Tile& tile, size_t image_width, const Mesh& mesh, const PixelRays& rays,
                                      SurfacePoints& out) {
-    out.clear();
     const TileRect& rect = tile.rect;
-    const size_t area = size_t(rect.width()) * size_t(rect.height());
-    out.pixel.reserve(area);
-    out.position.reserve(area);
-    out.normal.reserve(area);
+    out.start(size_t(rect.width()) * size_t(rect.height()), false);
     // The tile's ids are read in 4x4 blocks, which the hardware prefetchers do not follow
     // across rows; when the visibility buffer is cold (written with streaming stores, or
     // long ago) every cache line was a serial miss. Asking for all of them first lets the
@@ -137,13 +133,8 @@ void gather_surface_points(const Tile& tile, size_t image_width, const Mesh& mes
     using simd::vint;
     using simd::vmask;
     static_assert(16 % kLanes == 0, "lane groups tile a 4x4 block");
-    out.clear();
     const TileRect& rect = tile.rect;
-    const size_t area = size_t(rect.width()) * size_t(rect.height());
-    out.pixel.reserve(area);
-    out.position.reserve(area);
-    out.normal.reserve(area);
-    if (!lights.empty()) out.facing.reserve(area);
+    out.start(size_t(rect.width()) * size_t(rect.height()), !lights.empty());
     const size_t light_count = std::min(lights.size(), size_t(8));
     for (int y = rect.y0; y < rect.y1; ++y)  // the ids' lines, before the blocks read them (see the reference)
         for (int x = rect.x0; x < rect.x1; x += 16) __builtin_prefetch(&tile.triangle_at(x, y));

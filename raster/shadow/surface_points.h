@@ -35,6 +35,15 @@ struct SurfacePoints {
         normal.clear();
         facing.clear();
     }
+    // Empties the lists and makes room for a tile of `area` pixels (and their facing bits when
+    // `with_facing`), so filling them never reallocates: the start of every gather.
+    void start(size_t area, bool with_facing) {
+        clear();
+        pixel.reserve(area);
+        position.reserve(area);
+        normal.reserve(area);
+        if (with_facing) facing.reserve(area);
+    }
 };
 
 // Replaces `out` with the covered pixels of `tile`. Pixels whose triangle is degenerate or
