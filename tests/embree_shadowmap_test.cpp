@@ -15,6 +15,7 @@
 #include "raster/embree/shadow_rays.h"
 #include "raster/pipeline/rasterizer.h"
 #include "raster/shadow/mask_compare.h"
+#include "raster/shadow/shadow_edges.h"
 #include "raster/shadow/shadow_map.h"
 #include "raster/workloads/sphere_grid.h"
 
@@ -22,6 +23,17 @@ namespace tessera::shadow {
 namespace {
 
 const glm::vec3 kUp{0.0f, 1.0f, 0.0f};
+
+// The 20,000-triangle sphere grid rasterized at w x h: the frame several tests below read.
+struct RasterizedGrid {
+    workloads::SphereGridScene grid = workloads::make_sphere_grid(20000);
+    glm::mat4 vp = grid.camera.view_projection();
+    pipeline::Rasterizer rasterizer;
+    VisibilityBuffer vis;
+    RasterizedGrid(int w, int h) {
+        rasterizer.render(grid.mesh, vp, pipeline::Viewport(w, h), pipeline::RasterOptions{}, vis);
+    }
+};
 
 Mesh ground_and_occluder() {
     Mesh mesh;
@@ -102,11 +114,8 @@ TEST(ShadowMap, WithoutBiasThePlaneHasAcne) {
 }
 
 TEST(ShadowMap, AgreesWithEmbreeShadowRaysOnTheSphereGrid) {
-    const workloads::SphereGridScene grid = workloads::make_sphere_grid(20000);
-    const glm::mat4 vp = grid.camera.view_projection();
-    pipeline::Rasterizer rasterizer;
-    VisibilityBuffer vis;
-    rasterizer.render(grid.mesh, vp, pipeline::Viewport(640, 360), pipeline::RasterOptions{}, vis);
+    RasterizedGrid frame(640, 360);
+    auto& [grid, vp, rasterizer, vis] = frame;
     const std::vector<glm::vec3> lights = {grid.light};
     const std::vector<ShadowMap> maps = {ShadowMap(rasterizer, grid.mesh, grid.light)};
     const LightMask by_map = compute_light_mask(vis, grid.mesh, vp, lights, shadow_map_test(maps));
@@ -164,12 +173,9 @@ TEST(ShadowMap, BrokenTrianglesAreSkippedAndTheFrameStillRenders) {
 // surface point of a sphere-grid frame, and on random points and normals around the scene
 // (outside the map, behind the light, on its edges), for several PCF radii and map sizes.
 TEST(ShadowMap, SimdLookupEqualsScalarReference) {
-    const workloads::SphereGridScene grid = workloads::make_sphere_grid(20000);
-    const glm::mat4 vp = grid.camera.view_projection();
-    pipeline::Rasterizer rasterizer;
-    VisibilityBuffer vis;
     const int w = 320, h = 180;
-    rasterizer.render(grid.mesh, vp, pipeline::Viewport(w, h), pipeline::RasterOptions{}, vis);
+    RasterizedGrid frame(w, h);
+    auto& [grid, vp, rasterizer, vis] = frame;
     SurfacePoints points;
     gather_surface_points(vis, grid.mesh, PixelRays(vp, w, h), TileRect{0, 0, w, h}, points);
     const size_t from_frame = points.size();
@@ -211,12 +217,9 @@ TEST(ShadowMap, SimdLookupEqualsScalarReference) {
 // tile's edge), with lights above, beside and below the scene; and the batched pixel rays
 // equal ray() one by one.
 TEST(SurfacePoints, LanesEqualTheReferenceAndFacingBitsTheTest) {
-    const workloads::SphereGridScene grid = workloads::make_sphere_grid(20000);
-    const glm::mat4 vp = grid.camera.view_projection();
-    pipeline::Rasterizer rasterizer;
-    VisibilityBuffer vis;
     const int w = 203, h = 117;
-    rasterizer.render(grid.mesh, vp, pipeline::Viewport(w, h), pipeline::RasterOptions{}, vis);
+    RasterizedGrid frame(w, h);
+    auto& [grid, vp, rasterizer, vis] = frame;
     const PixelRays rays(vp, w, h);
     const glm::vec3 lights[] = {grid.light, {-40.0f, 3.0f, 10.0f}, {5.0f, -30.0f, 0.0f}};
     size_t points_seen = 0;
@@ -259,6 +262,71 @@ TEST(SurfacePoints, LanesEqualTheReferenceAndFacingBitsTheTest) {
             ASSERT_EQ(std::bit_cast<uint32_t>(d[c][i]), std::bit_cast<uint32_t>(direction[c])) << i;
         }
     }
+}
+
+// The points of listed pixels moved off their centres are the reference's points for a tile
+// whose centroids all lie there, bit for bit, with the facing bits faces_light gives.
+TEST(SurfacePoints, PointsAtAnOffsetAreTheReferenceThroughThatCentroid) {
+    const int w = 96, h = 64;
+    RasterizedGrid frame(w, h);
+    auto& [grid, vp, rasterizer, vis] = frame;
+    const PixelRays rays(vp, w, h);
+    const glm::vec3 lights[] = {grid.light, {-40.0f, 3.0f, 10.0f}};
+    const glm::vec2 at{0.375f, -0.125f};  // a 4x sample position
+    std::vector<glm::vec2> centroid(size_t(w) * h, at);
+    Tile tile;
+    tile.rect = TileRect{0, 0, w, h};
+    tile.triangle = vis.triangle.data();
+    tile.stride = size_t(w);
+    tile.centroid = centroid.data();
+    SurfacePoints reference, listed;
+    gather_surface_points_reference(tile, size_t(w), grid.mesh, rays, reference);
+    ASSERT_GT(reference.size(), 1000u);
+    gather_surface_points_at(tile, size_t(w), grid.mesh, rays, reference.pixel, at, listed, lights);
+    ASSERT_EQ(listed.pixel, reference.pixel);
+    ASSERT_EQ(listed.facing.size(), listed.size());
+    for (size_t i = 0; i < listed.size(); ++i) {
+        ASSERT_EQ(0, std::memcmp(&listed.position[i], &reference.position[i], sizeof(glm::vec3))) << i;
+        ASSERT_EQ(0, std::memcmp(&listed.normal[i], &reference.normal[i], sizeof(glm::vec3))) << i;
+        uint8_t facing = 0;
+        for (size_t l = 0; l < 2; ++l) facing |= uint8_t(faces_light(listed.position[i], listed.normal[i], lights[l]) << l);
+        ASSERT_EQ(listed.facing[i], facing) << i;
+    }
+}
+
+// find_shadow_edges picks the wholly covered pixels next to another set of lights, and the
+// tile's border, and nothing else.
+TEST(ShadowEdges, NeighboursWithOtherLightsAndTheBorder) {
+    const int w = 6, h = 5, x0 = 10, y0 = 20, image_width = 40;
+    std::vector<uint8_t> coverage(size_t(w) * h, 4);
+    coverage[size_t(2) * w + 3] = 3;  // pixel (13, 22): partly covered
+    Tile tile;
+    tile.rect = TileRect{x0, y0, x0 + w, y0 + h};
+    tile.stride = size_t(w);
+    tile.coverage = coverage.data();
+    SurfacePoints points;
+    std::vector<uint8_t> lights;
+    for (int y = y0; y < y0 + h; ++y)
+        for (int x = x0; x < x0 + w; ++x) {
+            if (x == 14 && y == 23) continue;  // no point: never a neighbour that differs
+            points.pixel.push_back(uint32_t(y * image_width + x));
+            lights.push_back(x < 13 ? 1 : 0);  // a boundary between columns 12 and 13
+        }
+    std::vector<uint16_t> scratch;
+    std::vector<uint32_t> edges;
+    find_shadow_edges(tile, image_width, points, lights, 4, scratch, edges);
+    std::vector<std::pair<int, int>> chosen;
+    for (const uint32_t i : edges)
+        chosen.push_back({int(points.pixel[i] % image_width), int(points.pixel[i] / image_width)});
+    std::vector<std::pair<int, int>> expected;
+    for (int y = y0; y < y0 + h; ++y)
+        for (int x = x0; x < x0 + w; ++x) {
+            const bool border = x == x0 || y == y0 || x == x0 + w - 1 || y == y0 + h - 1;
+            const bool boundary = x == 12 || x == 13;
+            if ((x == 14 && y == 23) || (x == 13 && y == 22)) continue;
+            if (border || boundary) expected.push_back({x, y});
+        }
+    EXPECT_EQ(chosen, expected);
 }
 
 TEST(ShadowMap, BadOptionsAreRejected) {

@@ -1,9 +1,11 @@
-// MSAA through the frame renderer: silhouettes get mixed colours, pixels inside a surface
-// keep their single-sample colour exactly, raster and ray-cast frames agree, and the result is
-// the same for any thread count.
+// MSAA through the frame renderer: silhouettes and shadow edges get mixed colours, pixels
+// inside a surface keep their single-sample colour exactly, raster and ray-cast frames agree,
+// and the result is the same for any thread count.
 #include <gtest/gtest.h>
 #include <tbb/global_control.h>
 
+#include <algorithm>
+#include <cmath>
 #include <cstring>
 #include <memory>
 
@@ -60,6 +62,36 @@ TEST(RenderMsaa, SilhouettesMixAndInsidesStay) {
     // pixels inside a surface keep the single-sample colour (up to the fog's depth).
     EXPECT_GT(mixed, 60u);
     EXPECT_GT(same, one.pixels.size() / 2);
+}
+
+// A shadow boundary inside a surface is no geometric edge, so coverage alone leaves it as
+// jagged as one sample does: the pixels along it test the light at their samples
+// (shadow_edges.h) and take colours between lit and shadowed. Raster and ray-cast frames make
+// the same choice there too.
+TEST(RenderMsaa, ShadowEdgesMixInsideASurface) {
+    for (render::RendererKind kind : {render::RendererKind::raster, render::RendererKind::raytrace}) {
+        const Frame unlit_1 = render(1, kind, render::ShadowMode::none);
+        const Frame unlit_4 = render(4, kind, render::ShadowMode::none);
+        const Frame shadowed_1 = render(1, kind, render::ShadowMode::rays);
+        const Frame shadowed_4 = render(4, kind, render::ShadowMode::rays);
+        size_t inside = 0, between = 0;
+        for (size_t p = 0; p < unlit_1.pixels.size(); ++p) {
+            // Inside a surface: multisampling changes nothing there without shadows.
+            if (max_difference(unlit_1.pixels[p], unlit_4.pixels[p]) > 1e-3f) continue;
+            ++inside;
+            const float lit = unlit_4.pixels[p].g, dark = shadowed_1.pixels[p].g, mixed = shadowed_4.pixels[p].g;
+            // Lit in one sample but partly shadowed at four, or the other way round.
+            between += std::min(std::abs(mixed - lit), std::abs(mixed - dark)) > 0.02f &&
+                       mixed < std::max(lit, dark) && mixed > 0.0f;
+        }
+        EXPECT_GT(inside, unlit_1.pixels.size() / 2) << int(kind);
+        EXPECT_GT(between, 20u) << int(kind) << ": the ball's shadow on the floor has soft pixels";
+    }
+    const Frame raster = render(4, render::RendererKind::raster, render::ShadowMode::rays);
+    const Frame rays = render(4, render::RendererKind::raytrace, render::ShadowMode::rays);
+    size_t differ = 0;
+    for (size_t p = 0; p < raster.pixels.size(); ++p) differ += max_difference(raster.pixels[p], rays.pixels[p]) > 2.0f / 255;
+    EXPECT_LT(differ, raster.pixels.size() / 100);
 }
 
 TEST(RenderMsaa, SameForAnyThreadCount) {

@@ -34,6 +34,7 @@
 #include "raster/shade/frame_shading.h"
 #include "raster/shade/outline.h"
 #include "raster/shadow/light_mask.h"
+#include "raster/shadow/shadow_edges.h"
 #include "raster/shadow/shadow_map.h"
 #include "raster/shadow/surface_points.h"
 #include "raster/core/trace.h"
@@ -189,6 +190,9 @@ struct FrameRenderer::Impl {
     // The pixels of `tile` that some light does not reach, shaded again without those lights.
     void shade_shadows(const FrameState& frame, const RegionPasses& passes, const VisibilityBuffer& visibility,
                        const Tile& tile, std::atomic<uint64_t>& shadowed) const;
+    void shade_shadow_edges(const FrameState& frame, const RegionPasses& passes, const Tile& tile, size_t image_width,
+                            const shadow::SurfacePoints& centre, std::span<const uint8_t> centre_lights,
+                            std::span<const uint32_t> edges, std::atomic<uint64_t>& shadowed) const;
 };
 
 FrameRenderer::FrameRenderer(AnimatedScene& scene, int width, int height, RendererKind renderer,
@@ -425,17 +429,25 @@ void FrameRenderer::Impl::shade_shadows(const FrameState& frame, const RegionPas
     thread_local std::vector<uint8_t> lit;
     thread_local std::vector<std::vector<shade::CoveredPixel>> groups;
     thread_local std::vector<glm::vec4> colours;
-    shadow::gather_surface_points(tile, size_t(visibility.width), frame.baked.mesh, passes.pixel_rays, points,
-                                  frame.light_targets);
+    thread_local std::vector<uint16_t> edge_scratch;
+    thread_local std::vector<uint32_t> edges;
+    const size_t w = size_t(visibility.width);
+    shadow::gather_surface_points(tile, w, frame.baked.mesh, passes.pixel_rays, points, frame.light_targets);
     lit.assign(points.size(), 0);
     frame.light_test(points, frame.light_targets, lit);
     const uint32_t all_lit = passes.all_lit;
+    // The lights reaching each point: those the test found, and those the surface turns away
+    // from (their term is zero anyway).
+    for (size_t i = 0; i < points.size(); ++i) lit[i] = uint8_t((lit[i] | ~points.facing[i]) & all_lit);
+    edges.clear();
+    if (samples > 1) {
+        shadow::find_shadow_edges(tile, w, points, lit, samples, edge_scratch, edges);
+        for (const uint32_t i : edges) lit[i] = uint8_t(all_lit);  // shaded from their samples below
+    }
     groups.resize(std::max<size_t>(groups.size(), all_lit));
     for (uint32_t mask = 0; mask < all_lit; ++mask) groups[mask].clear();
-    const uint32_t w = uint32_t(visibility.width);
-    const std::vector<uint8_t>& facing = points.facing;
     for (size_t i = 0; i < points.size(); ++i) {
-        const uint32_t mask = (lit[i] | ~facing[i]) & all_lit;
+        const uint32_t mask = lit[i];
         if (mask == all_lit) continue;
         const uint32_t p = points.pixel[i];
         groups[mask].push_back({int(p % w), int(p / w), tile.triangle_at(int(p % w), int(p / w))});
@@ -448,6 +460,84 @@ void FrameRenderer::Impl::shade_shadows(const FrameState& frame, const RegionPas
         for (size_t i = 0; i < colours.size(); ++i)
             tile.colour_at(groups[mask][i].x, groups[mask][i].y) = glm::vec4(glm::vec3(colours[i]), 1.0f);
         shadowed += groups[mask].size();
+    }
+    if (!edges.empty()) shade_shadow_edges(frame, passes, tile, w, points, lit, edges, shadowed);
+}
+
+// The pixels find_shadow_edges chose (`edges`: indices of the points shade_shadows gathered,
+// `centre`, whose lights are `centre_lights`): the lights tested again at each sample
+// position on the surface, and the pixel's colour the average of its samples' colours, each
+// shaded with the lights that reach that sample.
+void FrameRenderer::Impl::shade_shadow_edges(const FrameState& frame, const RegionPasses& passes, const Tile& tile,
+                                             size_t image_width, const shadow::SurfacePoints& centre,
+                                             std::span<const uint8_t> centre_lights, std::span<const uint32_t> edges,
+                                             std::atomic<uint64_t>& shadowed) const {
+    TraceScope t("shadow edges", "tile");
+    constexpr size_t kSets = 16;  // sets of lights: at most 4 lights cast shadows
+    thread_local shadow::SurfacePoints at_sample;
+    thread_local std::vector<uint8_t> lit;
+    thread_local std::vector<uint32_t> pixels, slot_of, order;
+    thread_local std::vector<uint8_t> count;  // [edge pixel][set of lights]: its samples so lit
+    thread_local std::vector<uint8_t> seen;   // [edge pixel]: its samples placed on the surface
+    thread_local std::vector<shade::CoveredPixel> to_shade;
+    thread_local std::vector<glm::vec4> colours;
+    thread_local std::vector<glm::vec3> sum;
+    const size_t w = image_width;
+    const TileRect& r = tile.rect;
+    const uint32_t all_lit = passes.all_lit;
+    const size_t n = size_t(samples);
+    const auto local = [&](uint32_t p) {
+        return (p / w - size_t(r.y0)) * size_t(r.width()) + (p % w - size_t(r.x0));
+    };
+    pixels.clear();
+    slot_of.assign(size_t(r.width()) * size_t(r.height()), 0);
+    for (const uint32_t i : edges) {
+        slot_of[local(centre.pixel[i])] = uint32_t(pixels.size());
+        pixels.push_back(centre.pixel[i]);
+    }
+    // Every sample starts with the centre's lights: a sample whose point cannot be placed (its
+    // ray runs along the plane) keeps them.
+    count.assign(pixels.size() * kSets, 0);
+    seen.assign(pixels.size(), 0);
+    const glm::vec2* positions = pipeline::sample_positions(samples);
+    for (size_t s = 0; s < n; ++s) {
+        shadow::gather_surface_points_at(tile, w, frame.baked.mesh, passes.pixel_rays, pixels, positions[s],
+                                         at_sample, frame.light_targets);
+        lit.assign(at_sample.size(), 0);
+        frame.light_test(at_sample, frame.light_targets, lit);
+        for (size_t i = 0; i < at_sample.size(); ++i) {
+            const size_t k = slot_of[local(at_sample.pixel[i])];
+            ++count[k * kSets + ((lit[i] | ~at_sample.facing[i]) & all_lit)];
+            ++seen[k];
+        }
+    }
+    for (size_t k = 0; k < pixels.size(); ++k) count[k * kSets + centre_lights[edges[k]]] += uint8_t(n - seen[k]);
+    // Sums in a fixed order: the lit colour (shade_surfaces left it in the tile) times its
+    // samples, then each other set of lights in increasing order.
+    sum.resize(pixels.size());
+    for (size_t k = 0; k < pixels.size(); ++k) {
+        const int x = int(pixels[k] % w), y = int(pixels[k] / w);
+        sum[k] = glm::vec3(tile.colour_at(x, y)) * float(count[k * kSets + all_lit]);
+    }
+    for (uint32_t set = 0; set < all_lit; ++set) {
+        to_shade.clear();
+        order.clear();
+        for (size_t k = 0; k < pixels.size(); ++k)
+            if (count[k * kSets + set] != 0) {
+                const int x = int(pixels[k] % w), y = int(pixels[k] / w);
+                to_shade.push_back({x, y, tile.triangle_at(x, y)});
+                order.push_back(uint32_t(k));
+            }
+        if (to_shade.empty()) continue;
+        colours.resize(to_shade.size());
+        passes.subset_shading[set]->shade(to_shade, colours);
+        for (size_t j = 0; j < order.size(); ++j)
+            sum[order[j]] += glm::vec3(colours[j]) * float(count[order[j] * kSets + set]);
+    }
+    for (size_t k = 0; k < pixels.size(); ++k) {
+        if (count[k * kSets + all_lit] == n) continue;  // every sample lit: the tile holds its colour
+        tile.colour_at(int(pixels[k] % w), int(pixels[k] / w)) = glm::vec4(sum[k] / float(n), 1.0f);
+        ++shadowed;
     }
 }
 
@@ -554,7 +644,10 @@ void FrameRenderer::Impl::render_region(const FrameState& frame, const Region& r
         TraceScope trace("tiles");
         const auto t0 = Clock::now();
         colour.resize(size_t(w) * size_t(h));
-        parallel_for_tiles(TileGrid(w, h, 64), [&](int, const TileRect& rect) {
+        // Multisampled, the rasterizer's tiles: the shadow edges a tile tests at its samples
+        // include its border pixels (shadow_edges.h), so both renderers must cut the same tiles.
+        const int tile_size = samples > 1 ? pipeline::RasterOptions{}.tile_size : 64;
+        parallel_for_tiles(TileGrid(w, h, tile_size), [&](int, const TileRect& rect) {
             const Tile tile = frame_tile(visibility, colour.data(), rect);
             const TimedTile timed(in_rows(rect) ? clock : nullptr);
             if (in_rows(rect) && samples > 1) {

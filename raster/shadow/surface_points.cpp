@@ -34,6 +34,22 @@ Plane plane_of(const Mesh& mesh, uint32_t triangle) {
     return plane;
 }
 
+// The point where the ray (origin, direction) meets `plane`, appended to `out` for `pixel`
+// with the plane's unit normal turned towards the ray's origin; false (nothing appended) where
+// the ray runs along the plane.
+bool append_point(const Plane& plane, const glm::vec3& origin, const glm::vec3& direction, uint32_t pixel,
+                  SurfacePoints& out) {
+    // Ray-plane intersection: t = n.(a - o) / n.d (edge-on planes give inf/NaN).
+    const float facing = glm::dot(plane.normal, direction);
+    const float t = glm::dot(plane.normal, plane.point - origin) / facing;
+    const glm::vec3 position = origin + t * direction;
+    if (!finite(position)) return false;
+    out.pixel.push_back(pixel);
+    out.position.push_back(position);
+    out.normal.push_back((facing > 0.0f ? -plane.normal : plane.normal) / plane.length);
+    return true;
+}
+
 }  // namespace
 
 void gather_surface_points(const VisibilityBuffer& visibility, const Mesh& mesh,
@@ -49,12 +65,8 @@ void gather_surface_points(const VisibilityBuffer& visibility, const Mesh& mesh,
 
 void gather_surface_points_reference(const Tile& tile, size_t image_width, const Mesh& mesh, const PixelRays& rays,
                                      SurfacePoints& out) {
-    out.clear();
     const TileRect& rect = tile.rect;
-    const size_t area = size_t(rect.width()) * size_t(rect.height());
-    out.pixel.reserve(area);
-    out.position.reserve(area);
-    out.normal.reserve(area);
+    out.start(size_t(rect.width()) * size_t(rect.height()), false);
     // The tile's ids are read in 4x4 blocks, which the hardware prefetchers do not follow
     // across rows; when the visibility buffer is cold (written with streaming stores, or
     // long ago) every cache line was a serial miss. Asking for all of them first lets the
@@ -83,16 +95,34 @@ void gather_surface_points_reference(const Tile& tile, size_t image_width, const
                     } else {
                         rays.pixel_ray(x, y, origin, direction);
                     }
-                    // Ray-plane intersection: t = n.(a - o) / n.d (edge-on planes give inf/NaN).
-                    const float facing = glm::dot(plane.normal, direction);
-                    const float t = glm::dot(plane.normal, plane.point - origin) / facing;
-                    const glm::vec3 position = origin + t * direction;
-                    if (!finite(position)) continue;
-                    out.pixel.push_back(uint32_t(pixel));
-                    out.position.push_back(position);
-                    out.normal.push_back((facing > 0.0f ? -plane.normal : plane.normal) /
-                                         plane.length);
+                    append_point(plane, origin, direction, uint32_t(pixel), out);
                 }
+}
+
+void gather_surface_points_at(const Tile& tile, size_t image_width, const Mesh& mesh, const PixelRays& rays,
+                              std::span<const uint32_t> pixels, glm::vec2 at, SurfacePoints& out,
+                              std::span<const glm::vec3> lights) {
+    out.start(pixels.size(), !lights.empty());
+    const size_t light_count = std::min(lights.size(), size_t(8));
+    uint32_t cached = kNoTriangle;
+    Plane plane;
+    for (const uint32_t pixel : pixels) {
+        const int x = int(pixel % image_width), y = int(pixel / image_width);
+        const uint32_t triangle = tile.triangle_at(x, y);
+        if (triangle == kNoTriangle) continue;
+        if (triangle != cached) {
+            plane = plane_of(mesh, triangle);
+            cached = triangle;
+        }
+        if (plane.length == 0.0f) continue;
+        glm::vec3 origin, direction;
+        rays.ray(float(x) + 0.5f + at.x, float(y) + 0.5f + at.y, origin, direction);
+        if (!append_point(plane, origin, direction, pixel, out) || lights.empty()) continue;
+        uint8_t facing = 0;
+        for (size_t l = 0; l < light_count; ++l)
+            facing |= uint8_t(faces_light(out.position.back(), out.normal.back(), lights[l]) << l);
+        out.facing.push_back(facing);
+    }
 }
 
 namespace {
@@ -137,13 +167,8 @@ void gather_surface_points(const Tile& tile, size_t image_width, const Mesh& mes
     using simd::vint;
     using simd::vmask;
     static_assert(16 % kLanes == 0, "lane groups tile a 4x4 block");
-    out.clear();
     const TileRect& rect = tile.rect;
-    const size_t area = size_t(rect.width()) * size_t(rect.height());
-    out.pixel.reserve(area);
-    out.position.reserve(area);
-    out.normal.reserve(area);
-    if (!lights.empty()) out.facing.reserve(area);
+    out.start(size_t(rect.width()) * size_t(rect.height()), !lights.empty());
     const size_t light_count = std::min(lights.size(), size_t(8));
     for (int y = rect.y0; y < rect.y1; ++y)  // the ids' lines, before the blocks read them (see the reference)
         for (int x = rect.x0; x < rect.x1; x += 16) __builtin_prefetch(&tile.triangle_at(x, y));

@@ -35,6 +35,15 @@ struct SurfacePoints {
         normal.clear();
         facing.clear();
     }
+    // Empties the lists and makes room for a tile of `area` pixels (and their facing bits when
+    // `with_facing`), so filling them never reallocates: the start of every gather.
+    void start(size_t area, bool with_facing) {
+        clear();
+        pixel.reserve(area);
+        position.reserve(area);
+        normal.reserve(area);
+        if (with_facing) facing.reserve(area);
+    }
 };
 
 // Replaces `out` with the covered pixels of `tile`. Pixels whose triangle is degenerate or
@@ -55,6 +64,15 @@ void gather_surface_points(const Tile& tile, size_t image_width, const Mesh& mes
 // The definition, one pixel at a time (without facing bits).
 void gather_surface_points_reference(const Tile& tile, size_t image_width, const Mesh& mesh, const PixelRays& rays,
                                      SurfacePoints& out);
+
+// The points of the listed `pixels` (indices y * image_width + x, in `tile`) on the rays
+// through their centres moved by `at` pixels, computed as the reference computes a point (the
+// surface's plane extended: the caller knows the pixel is wholly this surface), with their
+// facing bits as gather_surface_points gives them. For the few pixels tested again at their
+// samples (shadow_edges.h).
+void gather_surface_points_at(const Tile& tile, size_t image_width, const Mesh& mesh, const PixelRays& rays,
+                              std::span<const uint32_t> pixels, glm::vec2 at, SurfacePoints& out,
+                              std::span<const glm::vec3> lights);
 
 // True when a light at `light` is on the camera's side of the surface at `position` (the
 // normal from gather_surface_points faces the camera): only then can it light the point.
