@@ -58,7 +58,7 @@ struct Tile {
     uint32_t& triangle_at(int x, int y) const { return triangle[offset(x, y)]; }
     bool active(int x, int y) const { return !coverage || coverage[offset(x, y)] != 0; }
     // Whether the passes may sample this tile's pixels at their sample positions.
-    bool multisampled() const { return sample_mask && sample_offsets && sample_count > 1; }
+    bool multisampled() const { return coverage && sample_mask && sample_offsets && sample_count > 1; }
     float& depth_at(int x, int y) const { return depth[offset(x, y)]; }
     glm::vec4& colour_at(int x, int y) const {
         return colour[size_t(y - rect.y0) * colour_stride + size_t(x - rect.x0)];

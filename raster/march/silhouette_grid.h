@@ -13,6 +13,7 @@
 #pragma once
 #include <cmath>
 #include <cstddef>
+#include <cstdint>
 #include <vector>
 
 namespace tessera::march {
@@ -40,24 +41,39 @@ public:
     float at(int i, int j) const { return at_[size_t(j + 1) * size_t(w_ + 2) + size_t(i + 1)]; }
 
     static bool differ(float a, float b) {
+        if (a == b) return false;  // the common case: two misses, or one surface
         if (a == kUnknown || b == kUnknown) return false;
         if ((a == kNoHit) != (b == kNoHit)) return true;
         if (a == kNoHit) return false;
         return std::fabs(a - b) > kDistanceJump * std::fmin(a, b);
     }
-    // Whether tile pixel (i, j), itself known, differs from a neighbour.
-    bool edge(int i, int j) const {
-        const float c = at(i, j);
-        if (c == kUnknown) return false;
-        for (int dj = -1; dj <= 1; ++dj)
-            for (int di = -1; di <= 1; ++di)
-                if ((di || dj) && differ(c, at(i + di, j + dj))) return true;
-        return false;
+    // Marks every entry that differs from one of its 8 neighbours: each neighbouring pair
+    // is compared once (right, down and both diagonals of every entry), row by row.
+    void mark_edges() {
+        const size_t stride = size_t(w_ + 2);
+        edge_.assign(at_.size(), 0);
+        for (size_t j = 0; j + 1 < size_t(h_ + 2); ++j) {
+            const float* a = &at_[j * stride];
+            const float* b = a + stride;
+            uint8_t* ea = &edge_[j * stride];
+            uint8_t* eb = ea + stride;
+            for (size_t i = 0; i + 1 < stride; ++i) {
+                if (differ(a[i], a[i + 1])) ea[i] = ea[i + 1] = 1;
+                if (differ(a[i], b[i])) ea[i] = eb[i] = 1;
+                if (differ(a[i], b[i + 1])) ea[i] = eb[i + 1] = 1;
+                if (differ(a[i + 1], b[i])) ea[i + 1] = eb[i] = 1;
+            }
+            if (differ(a[stride - 1], b[stride - 1])) ea[stride - 1] = eb[stride - 1] = 1;
+        }
     }
+    // After mark_edges: whether tile pixel (i, j) differs from a neighbour (an unknown pixel
+    // never does).
+    bool edge(int i, int j) const { return edge_[size_t(j + 1) * size_t(w_ + 2) + size_t(i + 1)] != 0; }
 
 private:
     int w_ = 0, h_ = 0;
     std::vector<float> at_;
+    std::vector<uint8_t> edge_;
 };
 
 }  // namespace tessera::march

@@ -97,6 +97,7 @@ private:
         std::vector<float> stored;  // window depth a sample must be nearer than
         std::vector<glm::vec4> colour;
         std::vector<uint8_t> hit;
+        bool any_won = false;  // some centre of the tile won: else only the ring can make edges
 
         void clear_jobs() {
             x.clear();
@@ -119,6 +120,7 @@ private:
         s.grid.reset(target.width(), target.height());
         s.under_colour.resize(area);
         s.under_depth.resize(area);
+        s.any_won = false;
         return s;
     }
 
@@ -127,6 +129,7 @@ private:
         if (!edges) return;
         const int i = x - target.rect.x0, j = y - target.rect.y0;
         edges->grid.at(i, j) = won ? t : SilhouetteGrid::kNoHit;
+        edges->any_won |= won;
         if (won) {
             const size_t p = size_t(j) * size_t(target.width()) + size_t(i);
             edges->under_colour[p] = target.colour_at(x, y);
@@ -252,23 +255,27 @@ private:
         for (int y = r.y0; y < r.y1; ++y) ring(r.x0 - 1, y), ring(r.x1, y);
         for (int x = r.x0 - 1; x <= r.x1; ++x) ring(x, r.y1);
         march_all_jobs(s, false, reference);
-        for (size_t k = 0; k < s.jobs(); ++k)
+        bool any = s.any_won;
+        for (size_t k = 0; k < s.jobs(); ++k) {
             s.grid.at(s.x[k] - r.x0, s.y[k] - r.y0) = s.hit[k] ? s.colour[k].x : SilhouetteGrid::kNoHit;
+            any |= s.hit[k] != 0;
+        }
+        if (!any) return;  // every centre and neighbour missed: no edge (most of a sky)
         // Pixels of this layer that the centre pass skipped (whole packets of other layers'
         // pixels are skipped; a lane of one is marched) hold no result yet: their centres
         // missed unless recorded.
-        for (int j = 0; j < h; ++j)
+        for (int j = 0; j < h; ++j) {
+            const uint8_t* coverage = target.coverage + size_t(j) * target.stride;
+            float* g = &s.grid.at(0, j);
             for (int i = 0; i < w; ++i)
-                if (target.active(r.x0 + i, r.y0 + j)) {
-                    if (s.grid.at(i, j) == SilhouetteGrid::kUnknown) s.grid.at(i, j) = SilhouetteGrid::kNoHit;
-                } else {
-                    s.grid.at(i, j) = SilhouetteGrid::kUnknown;
-                }
+                g[i] = !coverage[i] ? SilhouetteGrid::kUnknown : g[i] == SilhouetteGrid::kUnknown ? SilhouetteGrid::kNoHit : g[i];
+        }
+        s.grid.mark_edges();
         // The samples of the edge pixels, in pixel then sample order.
         s.clear_jobs();
         for (int j = 0; j < h; ++j)
             for (int i = 0; i < w; ++i) {
-                if (!s.grid.edge(i, j)) continue;
+                if (!s.grid.edge(i, j) || !target.coverage[size_t(j) * target.stride + size_t(i)]) continue;
                 const int x = r.x0 + i, y = r.y0 + j;
                 const float stored = under_depth(target, s, i, j);
                 for (uint32_t m = target.sample_mask[target.offset(x, y)]; m; m &= m - 1)
