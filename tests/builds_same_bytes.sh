@@ -2,7 +2,8 @@
 # Same bytes between builds for different SIMD widths (`make same-bytes`; not in CI): two
 # `tessera` binaries, e.g. the release build (-march=native: AVX-512 where the CPU has it) and
 # the portable one (x86-64-v3: AVX2), must write identical files: a mid-animation frame of
-# every example scene in every shadow mode and with both renderers, in PNG and EXR, the raster
+# every example scene in every shadow mode and with both renderers, in PNG and EXR, 4-sample
+# frames of the marched and the default scenes, the raster
 # command's colour, ids and depth, and the generators' images.
 #   bash tests/builds_same_bytes.sh build/bin/tessera build-portable/bin/tessera
 set -u
@@ -41,6 +42,13 @@ for scene in "$scenes"/*.json; do
     [ "$name" = stress ] ||
         both "${name}_raytrace" png render --scene "$scene" --size $size --frames 7:7 --renderer raytrace --quiet \
             --out "@OUT@.png"
+done
+# Multisampled: the layers and the marched silhouettes' sample rays (packets of 16 or 8 lanes).
+for name in metaballs terrain snakes; do
+    for renderer in raster raytrace; do
+        both "${name}_msaa_$renderer" png render --scene "$scenes/$name.json" --size 160x90 --frames 7:7 \
+            --samples 4 --renderer $renderer --quiet --out "@OUT@.png"
+    done
 done
 "$first" testmesh --kind sphere --count 5000 --out "$dir/s.obj" --camera-out "$dir/s.cam" >/dev/null || fail "testmesh exited $?"
 for shade in id depth normal phong; do

@@ -19,6 +19,7 @@
 #include "raster/march/fog_pass.h"
 #include "raster/march/metaball_orbits.h"
 #include "raster/march/procedural_surfaces.h"
+#include "raster/pipeline/sample_pattern.h"
 #include "march_fixtures.h"
 
 using namespace tessera;
@@ -403,4 +404,117 @@ TEST(MarchPass, SurfacePassInLanesEqualsTheRayByRayReference) {
     const GradientNoiseField noise;
     check(SurfacePass(gradient_noise_surface(noise), rays, MarchSettings{}, SurfaceLook{}, env), "gradient noise");
     check(SurfacePass(gradient_noise_surface(noise), rays, MarchSettings{}, differences, env), "gradient noise, differences");
+}
+
+namespace {
+
+// A multisampled tile over a whole Frame: every pixel one surface of 4 samples, or the
+// coverage and sample masks given.
+Tile multisampled_tile(Frame& frame, const TileRect& r, const uint8_t* coverage, const uint16_t* masks) {
+    Tile t = frame.tile(r.x0, r.y0, r.x1, r.y1);
+    t.coverage = coverage + size_t(r.y0) * W + size_t(r.x0);
+    t.sample_mask = masks + size_t(r.y0) * W + size_t(r.x0);
+    t.sample_count = 4;
+    t.sample_offsets = pipeline::sample_positions(4);
+    return t;
+}
+
+}  // namespace
+
+// With 4 samples, a pixel the sphere's silhouette crosses shows the mean of its samples: the
+// sky's colour for those that miss (analytically, at the standard positions), the surface's for
+// those that hit; pixels whose neighbourhood is all sphere or all sky keep their one-sample
+// colour bit for bit.
+TEST(MarchPass, MultisampledSilhouettePixelsMixSkyAndSurface) {
+    const Camera camera = march_camera(W, H);
+    const RayGenerator rays(camera, W, H);
+    const scene::Background env = sky_background();
+    const auto pass = sphere_pass(rays, env);
+    const glm::vec4 sky(0.0f, 0.0f, 1.0f, 1.0f);
+    Frame one, four;
+    std::fill(one.colour.begin(), one.colour.end(), sky);
+    four.colour = one.colour;
+    const std::vector<uint8_t> coverage(size_t(W) * H, 4);
+    const std::vector<uint16_t> masks(size_t(W) * H, 0xF);
+    pass.run(one.all());
+    pass.run(multisampled_tile(four, {0, 0, W, H}, coverage.data(), masks.data()));
+    const glm::vec2* offsets = pipeline::sample_positions(4);
+    int partial = 0, kept = 0;
+    for (int y = 1; y < H - 1; ++y)
+        for (int x = 1; x < W - 1; ++x) {
+            const size_t p = size_t(y) * W + size_t(x);
+            int hits = 0;
+            bool clear = true;  // no sample ray within a hair of grazing the sphere
+            for (int s = 0; s < 4; ++s) {
+                const glm::vec3 d = rays.direction(x, y, offsets[s]);
+                const glm::dvec3 oc = glm::dvec3(camera.eye);
+                const double b = glm::dot(glm::dvec3(d), oc), disc = b * b - (glm::dot(oc, oc) - 1.0);
+                hits += disc > 0.0;
+                clear &= std::fabs(disc) > 1e-3;
+            }
+            // All sky, or all sphere at distances well within the edge test's jump.
+            bool uniform = true;
+            const float t = rays.distance_from_depth(x, y, one.depth[p]);
+            for (int dy = -1; dy <= 1; ++dy)
+                for (int dx = -1; dx <= 1; ++dx) {
+                    const float tn = rays.distance_from_depth(x + dx, y + dy, one.depth[p + dy * W + dx]);
+                    uniform &= std::isinf(t) ? std::isinf(tn) : std::fabs(tn - t) < t / 32.0f;
+                }
+            if (uniform) {
+                kept += std::memcmp(&one.colour[p], &four.colour[p], sizeof(glm::vec4)) == 0;
+                EXPECT_EQ(std::memcmp(&one.colour[p], &four.colour[p], sizeof(glm::vec4)), 0) << x << "," << y;
+            }
+            if (!clear || hits == 0 || hits == 4) continue;
+            ++partial;
+            // The surface's share: what is left after the sky's (4 - hits) quarters, per hit,
+            // against the one-sample surface colour of a neighbour whose centre hits.
+            const glm::vec4 surface = (four.colour[p] - sky * (float(4 - hits) / 4.0f)) * (4.0f / float(hits));
+            float nearest = 1e9f;
+            for (int dy = -1; dy <= 1; ++dy)
+                for (int dx = -1; dx <= 1; ++dx)
+                    if (one.depth[p + dy * W + dx] < 1.0f) {
+                        const glm::vec4 d = glm::abs(one.colour[p + dy * W + dx] - surface);
+                        nearest = std::min(nearest, std::max(std::max(d.r, d.g), d.b));
+                    }
+            EXPECT_LT(nearest, 0.1f) << x << "," << y << " with " << hits << " of 4 samples on the sphere";
+            EXPECT_NE(four.colour[p], sky) << x << "," << y;
+            EXPECT_NE(four.colour[p], one.colour[p]) << x << "," << y;
+        }
+    EXPECT_GT(partial, 12);
+    EXPECT_GT(kept, W * H / 3);
+}
+
+// The silhouette samples in lanes against the ray-by-ray reference, bit for bit: the sphere
+// and metaballs (whose tiles are culled by their centres, while rings and samples reach past
+// them) over a half "rasterized" frame, in overlapping rectangles, some pixels in no layer and
+// some with only part of their samples.
+TEST(MarchPass, SilhouetteSamplesInLanesEqualTheRayByRayReference) {
+    const Camera camera = march_camera(W, H);
+    const RayGenerator rays(camera, W, H);
+    const scene::Background env = sky_background();
+    Frame start;
+    for (int y = 0; y < H; ++y)
+        for (int x = 0; x < W / 2; ++x) {
+            const glm::vec3 d = rays.direction(x, y);
+            start.depth[y * W + x] = rays.window_depth(camera.eye + d * ((0.3f - camera.eye.z) / d.z));
+            start.colour[y * W + x] = glm::vec4(0.0f, 1.0f, 0.0f, 1.0f);
+        }
+    std::vector<uint8_t> coverage(size_t(W) * H);
+    std::vector<uint16_t> masks(size_t(W) * H);
+    for (size_t i = 0; i < masks.size(); ++i) {
+        masks[i] = i % 7 == 0 ? 0 : i % 5 == 0 ? uint16_t(0x5) : i % 3 == 0 ? uint16_t(0x8) : uint16_t(0xF);
+        coverage[i] = uint8_t(std::popcount(unsigned(masks[i])));
+    }
+    const auto check = [&](const auto& pass, const char* what) {
+        Frame lanes = start, one = start;
+        for (const TileRect r : {TileRect{0, 0, W, H}, TileRect{5, 3, 38, 29}}) {
+            pass.run(multisampled_tile(lanes, r, coverage.data(), masks.data()));
+            pass.run_reference(multisampled_tile(one, r, coverage.data(), masks.data()));
+        }
+        ASSERT_EQ(std::memcmp(lanes.depth.data(), one.depth.data(), sizeof(float) * W * H), 0) << what;
+        ASSERT_EQ(std::memcmp(lanes.colour.data(), one.colour.data(), sizeof(glm::vec4) * W * H), 0) << what;
+    };
+    check(sphere_pass(rays, env), "sphere");
+    const MetaballField balls(orbiting_metaballs(5, 0.8f, 0.9f), MetaballStyle{MetaballKernel::wyvill, 0.4f});
+    check(SurfacePass<MetaballSurface>(MetaballSurface{balls}, rays, MarchSettings{}, SurfaceLook{}, env), "metaballs");
 }

@@ -32,11 +32,22 @@ const char* kBall = R"({
   "passes": [{"type": "fog", "density": [0.02, 0.02, 0.02], "colour": [0.8, 0.8, 0.8], "falloff": 0.5, "base_height": 0}]
 })";
 
-Frame render(int samples, render::RendererKind kind, render::ShadowMode shadows, int threads = 0) {
+// Metaballs marched against the sky, nothing rasterized: their silhouettes are the pass's own.
+const char* kBalls = R"({
+  "camera": {"eye": [0, 0.6, 4.2], "lookat": [0, 0, 0], "fov": 45},
+  "background": {"type": "colour", "colour": [0.2, 0.3, 0.9]},
+  "lights": [{"direction": [0.4, 0.55, 0.73], "La": [0.15, 0.15, 0.2], "Le": [1.2, 1.1, 1.0]}],
+  "passes": [{"type": "metaballs", "count": 5, "radius": 0.9, "kernel": "wyvill", "threshold": 0.35,
+              "material": {"kd": [0.85, 0.25, 0.12], "ka": [0.1, 0.05, 0.05]}}],
+  "objects": []
+})";
+
+Frame render(int samples, render::RendererKind kind, render::ShadowMode shadows, int threads = 0,
+             const char* json = kBall) {
     std::unique_ptr<tbb::global_control> limit;
     if (threads > 0) limit = std::make_unique<tbb::global_control>(tbb::global_control::max_allowed_parallelism, threads);
     std::vector<std::string> warnings;
-    render::AnimatedScene scene = scene_file::build_scene(scene_file::parse_scene(kBall, "ball.json", warnings));
+    render::AnimatedScene scene = scene_file::build_scene(scene_file::parse_scene(json, "scene.json", warnings));
     render::FrameRenderer renderer(scene, 120, 80, kind, shadows, samples);
     return renderer.render(0.0f);
 }
@@ -109,6 +120,28 @@ TEST(RenderMsaa, RasterAndRaysAgreeSampleForSample) {
     size_t differ = 0;
     for (size_t p = 0; p < raster.pixels.size(); ++p) differ += max_difference(raster.pixels[p], rays.pixels[p]) > 2.0f / 255;
     EXPECT_LT(differ, raster.pixels.size() / 100);
+}
+
+// Marched silhouettes against the background mix like rasterized ones (the pass samples the
+// edge pixels at the same positions), whichever renderer found the visibility and whatever the
+// thread count; the insides keep their one-sample colour.
+TEST(RenderMsaa, MarchedSilhouettesMix) {
+    const Frame one = render(1, render::RendererKind::raster, render::ShadowMode::none, 0, kBalls);
+    const Frame four = render(4, render::RendererKind::raster, render::ShadowMode::none, 0, kBalls);
+    const glm::vec4 background(0.2f, 0.3f, 0.9f, 1.0f);
+    size_t same = 0, mixed = 0, surface = 0;
+    for (size_t p = 0; p < one.pixels.size(); ++p) {
+        same += one.pixels[p] == four.pixels[p];
+        surface += one.pixels[p] != background;
+        mixed += max_difference(one.pixels[p], four.pixels[p]) > 0.05f;
+    }
+    EXPECT_GT(surface, 500u);
+    EXPECT_GT(mixed, 40u);
+    EXPECT_GT(same, one.pixels.size() * 3 / 4);
+    for (render::RendererKind kind : {render::RendererKind::raster, render::RendererKind::raytrace}) {
+        const Frame a = render(4, kind, render::ShadowMode::none, 1, kBalls);
+        EXPECT_EQ(0, std::memcmp(a.pixels.data(), four.pixels.data(), a.pixels.size() * sizeof(glm::vec4))) << int(kind);
+    }
 }
 
 TEST(RenderMsaa, RejectsBadSampleCounts) {

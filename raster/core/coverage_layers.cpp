@@ -25,7 +25,9 @@ Tile CoverageLayers::layer(int j, const glm::vec4& clear) {
     depth_.resize(area);
     coverage_.resize(area);
     colour_.assign(area, clear);
+    const bool masks = positions_ && samples_ <= 16;
     if (positions_) centroid_.resize(area);
+    if (masks) mask_.resize(area);
     for (size_t p = 0; p < area; ++p) {
         const uint32_t at = first_[p] + uint32_t(j);
         if (at < first_[p + 1]) {
@@ -34,12 +36,14 @@ Tile CoverageLayers::layer(int j, const glm::vec4& clear) {
             coverage_[p] = uint8_t(surfaces_[at].count);
             if (positions_)
                 centroid_[p] = int(surfaces_[at].count) == samples_ ? glm::vec2(0.0f) : positions_[surfaces_[at].first];
+            if (masks) mask_[p] = surfaces_[at].mask;
         } else {
             // Nothing here: no triangle, and a depth nearer than anything, so that passes
             // which test depth (transparency, marching, fog) find nothing to do either.
             triangle_[p] = kNoTriangle;
             depth_[p] = 0.0f;
             coverage_[p] = 0;
+            if (masks) mask_[p] = 0;
         }
     }
     Tile tile;
@@ -51,6 +55,11 @@ Tile CoverageLayers::layer(int j, const glm::vec4& clear) {
     tile.colour_stride = w;
     tile.coverage = coverage_.data();
     tile.centroid = positions_ ? centroid_.data() : nullptr;
+    if (masks) {
+        tile.sample_mask = mask_.data();
+        tile.sample_count = samples_;
+        tile.sample_offsets = positions_;
+    }
     return tile;
 }
 

@@ -48,7 +48,9 @@ public:
     // Layer j over the rect of the last build(), in this object's buffers (valid until the
     // next layer() or build()): triangle, depth, coverage (samples of the pixel's surface in
     // this layer, 0 where the pixel has none: passes skip it), centroid (with positions)
-    // and colour cleared to `clear`.
+    // and colour cleared to `clear`; with positions and at most 16 samples, also each
+    // pixel's sample mask and the positions (Tile::sample_mask), for passes that sample the
+    // pixel's surface themselves.
     Tile layer(int j, const glm::vec4& clear);
     // Adds the colour of the last layer() times coverage / samples into `out` (a tile of the
     // rect's size with `stride` elements per row; layer 0 assigns, the others add).
@@ -60,6 +62,7 @@ private:
         float depth;
         uint16_t count;
         uint16_t first;  // its first sample
+        uint16_t mask;   // its samples, bit s: sample s (the first 16)
     };
     void add_pixel(const Surface* surfaces, int n);
 
@@ -74,6 +77,7 @@ private:
     std::vector<uint8_t> coverage_;
     std::vector<glm::vec4> colour_;
     std::vector<glm::vec2> centroid_;
+    std::vector<uint16_t> mask_;
 };
 
 template <class SampleAt>
@@ -96,10 +100,12 @@ void CoverageLayers::build(const TileRect& rect, int samples, const glm::vec2* p
                 sample_at(x, y, s, triangle, depth);
                 int k = 0;
                 while (k < n && list[k].triangle != triangle) ++k;
-                if (k == n) list[n++] = {triangle, depth, 1, uint16_t(s)};
+                const uint16_t bit = s < 16 ? uint16_t(1u << s) : uint16_t(0);
+                if (k == n) list[n++] = {triangle, depth, 1, uint16_t(s), bit};
                 else {
                     list[k].depth = depth < list[k].depth ? depth : list[k].depth;
                     ++list[k].count;
+                    list[k].mask |= bit;
                 }
             }
             add_pixel(list, n);

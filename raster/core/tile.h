@@ -44,12 +44,21 @@ struct Tile {
     // must lie on it (shadow tests), as an offset from the pixel centre in pixels; null: the
     // centre.
     const glm::vec2* centroid = nullptr;
+    // With coverage, for passes that sample the pixel themselves (ray-marched silhouettes):
+    // per pixel, which of its samples the surface in this tile covers (bit s: sample s; same
+    // stride as triangle), and the pixel's sample count and positions (offsets from the
+    // pixel centre in pixels, y down). Null: the passes evaluate pixel centres only.
+    const uint16_t* sample_mask = nullptr;
+    int sample_count = 1;
+    const glm::vec2* sample_offsets = nullptr;
 
     int width() const { return rect.width(); }
     int height() const { return rect.height(); }
     size_t offset(int x, int y) const { return size_t(y - rect.y0) * stride + size_t(x - rect.x0); }
     uint32_t& triangle_at(int x, int y) const { return triangle[offset(x, y)]; }
     bool active(int x, int y) const { return !coverage || coverage[offset(x, y)] != 0; }
+    // Whether the passes may sample this tile's pixels at their sample positions.
+    bool multisampled() const { return coverage && sample_mask && sample_offsets && sample_count > 1; }
     float& depth_at(int x, int y) const { return depth[offset(x, y)]; }
     glm::vec4& colour_at(int x, int y) const {
         return colour[size_t(y - rect.y0) * colour_stride + size_t(x - rect.x0)];

@@ -42,6 +42,27 @@ glm::vec3 RayGenerator::direction(int x, int y) const {
     return glm::normalize(glm::vec3(ray_dir_matrix_ * glm::vec4(n.x, n.y, 1.0f, 1.0f)));
 }
 
+glm::vec3 RayGenerator::direction(int x, int y, glm::vec2 offset) const {
+    const glm::vec2 n{(float(x) + 0.5f + offset.x) / float(width_) * 2.0f - 1.0f,
+                      1.0f - (float(y) + 0.5f + offset.y) / float(height_) * 2.0f};
+    return glm::normalize(glm::vec3(ray_dir_matrix_ * glm::vec4(n.x, n.y, 1.0f, 1.0f)));
+}
+
+void RayGenerator::sample_packet(const int* x, const int* y, const glm::vec2* offset, int count,
+                                 RayPacket& out) const {
+    out.count = count;
+    for (int i = 0; i < kMarchLanes; ++i) {
+        const int lane = i < count ? i : 0;
+        const glm::vec3 d = direction(x[lane], y[lane], offset[lane]);
+        out.dx[i] = d.x;
+        out.dy[i] = d.y;
+        out.dz[i] = d.z;
+        out.ox[i] = eye_.x;
+        out.oy[i] = eye_.y;
+        out.oz[i] = eye_.z;
+    }
+}
+
 void RayGenerator::packet(int x0, int y, int count, RayPacket& out) const {
     out.count = count;
     const glm::mat4& m = ray_dir_matrix_;

@@ -27,6 +27,14 @@ public:
     // Rays through pixels (x0 .. x0+count-1, y); count in 1..kMarchLanes.
     void packet(int x0, int y, int count, RayPacket& out) const;
 
+    // The unit direction through the point `offset` pixels (y down) from the centre of pixel
+    // (x, y), which may lie outside the image: a multisample position (sample_pattern.h) or a
+    // neighbour's centre.
+    glm::vec3 direction(int x, int y, glm::vec2 offset) const;
+    // Rays through such points, one per lane: lane i through `offset[i]` of pixel (x[i], y[i]);
+    // count in 1..kMarchLanes (later lanes copy lane 0).
+    void sample_packet(const int* x, const int* y, const glm::vec2* offset, int count, RayPacket& out) const;
+
     // direction() and distance_from_depth() for the kLanes pixels (x0 + i, y), one per lane
     // i, with their arithmetic in their order (glm's mat4 * vec4, normalize and length), so
     // each lane equals the one-pixel call bit for bit: the per-pixel passes' form.
