@@ -313,36 +313,41 @@ TEST(MarchPass, FogTransmittanceInLanesEqualsTheOneRayForm) {
 // The per-pixel passes in lanes against their one-pixel references: background and fog over
 // sphere, empty, near, far-faded and beyond-far pixels, for a camera looking across the
 // horizon, up and down, with constant and height fog; pixels another tile owns are left alone.
+// With coverage (some pixels held by no surface of this tile) and without (every pixel is).
 TEST(MarchPass, FogAndBackgroundInLanesEqualThePixelByPixelReference) {
     const scene::Background env = sky_background();
-    for (const glm::vec3 lookat : {glm::vec3(0.0f), glm::vec3(0.4f, 50.0f, 3.9f), glm::vec3(0.4f, -50.0f, 3.9f)})
-        for (const float falloff : {0.0f, 0.8f}) {
-            Camera camera = march_camera(W, H);
-            camera.lookat = lookat;
-            const RayGenerator rays(camera, W, H);
-            Fog fog;
-            fog.density = {0.05f, 0.0f, 0.3f};
-            fog.colour = {0.6f, 0.6f, 0.7f};
-            fog.falloff = falloff;
-            const FogPass fog_pass(rays, fog);
-            const BackgroundPass background(rays, env);
-            const Frame start = fog_probe_frame(rays, camera, env);
-            std::vector<uint8_t> coverage(size_t(W) * H, 1);
-            for (size_t i = 0; i < coverage.size(); i += 5) coverage[i] = 0;
-            Frame lanes = start, one = start;
-            for (const TileRect r : {TileRect{0, 0, W, H}, TileRect{3, 2, 29, 17}}) {
-                Tile a = lanes.tile(r.x0, r.y0, r.x1, r.y1), b = one.tile(r.x0, r.y0, r.x1, r.y1);
-                background.run(a);
-                background.run_reference(b);
-                a.coverage = b.coverage = coverage.data() + size_t(r.y0) * W + size_t(r.x0);
-                fog_pass.run(a);
-                fog_pass.run_reference(b);
+    for (const bool with_coverage : {true, false}) {
+        for (const glm::vec3 lookat : {glm::vec3(0.0f), glm::vec3(0.4f, 50.0f, 3.9f), glm::vec3(0.4f, -50.0f, 3.9f)})
+            for (const float falloff : {0.0f, 0.8f}) {
+                Camera camera = march_camera(W, H);
+                camera.lookat = lookat;
+                const RayGenerator rays(camera, W, H);
+                Fog fog;
+                fog.density = {0.05f, 0.0f, 0.3f};
+                fog.colour = {0.6f, 0.6f, 0.7f};
+                fog.falloff = falloff;
+                const FogPass fog_pass(rays, fog);
+                const BackgroundPass background(rays, env);
+                const Frame start = fog_probe_frame(rays, camera, env);
+                std::vector<uint8_t> coverage(size_t(W) * H, 1);
+                for (size_t i = 0; i < coverage.size(); i += 5) coverage[i] = 0;
+                Frame lanes = start, one = start;
+                for (const TileRect r : {TileRect{0, 0, W, H}, TileRect{3, 2, 29, 17}}) {
+                    Tile a = lanes.tile(r.x0, r.y0, r.x1, r.y1), b = one.tile(r.x0, r.y0, r.x1, r.y1);
+                    background.run(a);
+                    background.run_reference(b);
+                    if (with_coverage) a.coverage = b.coverage = coverage.data() + size_t(r.y0) * W + size_t(r.x0);
+                    fog_pass.run(a);
+                    fog_pass.run_reference(b);
+                }
+                ASSERT_EQ(std::memcmp(lanes.colour.data(), one.colour.data(), sizeof(glm::vec4) * W * H), 0)
+                    << "falloff " << falloff << " looking at y " << lookat.y << " coverage " << with_coverage;
+                if (with_coverage) {
+                    EXPECT_EQ(lanes.colour[5], start.colour[5]);  // not this tile's: no fog
+                }
+                EXPECT_NE(lanes.colour[1], start.colour[1]);
             }
-            ASSERT_EQ(std::memcmp(lanes.colour.data(), one.colour.data(), sizeof(glm::vec4) * W * H), 0)
-                << "falloff " << falloff << " looking at y " << lookat.y;
-            EXPECT_EQ(lanes.colour[5], start.colour[5]);  // not this tile's: no fog
-            EXPECT_NE(lanes.colour[1], start.colour[1]);
-        }
+    }
 }
 
 // The surface pass in lanes against its ray-by-ray reference, bit for bit: every kind of field

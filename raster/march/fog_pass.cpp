@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
 #include <limits>
 
 namespace tessera::march {
@@ -30,24 +31,50 @@ simd::vfloat far_visibility(simd::vfloat distance, simd::vfloat far_distance) {
     return simd::select(vfloat(std::numeric_limits<float>::infinity()) <= distance, vfloat(1.0f), visible);
 }
 
+// Fog::apply's t L + (1 - t) C on channels 0..2 of the n pixels of an RGBA row whose
+// coverage is non-zero (all of them without coverage); alpha and other pixels are left alone.
+// Plain loops over restrict pointers that GCC vectorises (the colour's channels as
+// interleaved loads and stores, the coverage as a mask), with the float operations of the
+// one-pixel form in its order.
+void apply_fog(float* __restrict rgba, const uint8_t* __restrict coverage, const float* __restrict t0,
+               const float* __restrict t1, const float* __restrict t2, const glm::vec3 colour, int n) {
+    if (!coverage) {
+        for (int i = 0; i < n; ++i) {
+            float* c = rgba + 4 * i;
+            c[0] = t0[i] * c[0] + (1.0f - t0[i]) * colour.r;
+            c[1] = t1[i] * c[1] + (1.0f - t1[i]) * colour.g;
+            c[2] = t2[i] * c[2] + (1.0f - t2[i]) * colour.b;
+        }
+        return;
+    }
+    for (int i = 0; i < n; ++i) {
+        if (!coverage[i]) continue;
+        float* c = rgba + 4 * i;
+        c[0] = t0[i] * c[0] + (1.0f - t0[i]) * colour.r;
+        c[1] = t1[i] * c[1] + (1.0f - t1[i]) * colour.g;
+        c[2] = t2[i] * c[2] + (1.0f - t2[i]) * colour.b;
+    }
+}
+
 }  // namespace
 
 void FogPass::run(const Tile& target) const {
     if (!fog_.enabled()) return;
     using simd::vfloat;
     constexpr int N = simd::kLanes;
-    static_assert(N <= 32, "one bit per lane");
     alignas(64) float depth[N], t[3][N];
-    const glm::vec3 eye = rays_.eye(), colour = fog_.colour;
-    for (int y = target.rect.y0; y < target.rect.y1; ++y)
+    const glm::vec3 eye = rays_.eye();
+    for (int y = target.rect.y0; y < target.rect.y1; ++y) {
+        // The row's depths, coverage and colours are contiguous from the tile's first column.
+        const float* depth_row = &target.depth_at(target.rect.x0, y);
+        const uint8_t* coverage_row = target.coverage ? target.coverage + target.offset(target.rect.x0, y) : nullptr;
+        float* colour_row = &target.colour_at(target.rect.x0, y).r;
         for (int x0 = target.rect.x0; x0 < target.rect.x1; x0 += N) {
-            const int n = std::min(N, target.rect.x1 - x0);
-            uint32_t active = 0;
-            for (int i = 0; i < N; ++i) {
-                depth[i] = i < n ? target.depth_at(x0 + i, y) : 1.0f;
-                if (i < n && target.active(x0 + i, y)) active |= 1u << i;
-            }
-            if (!active) continue;
+            const int from = x0 - target.rect.x0, n = std::min(N, target.rect.x1 - x0);
+            const uint8_t* coverage = coverage_row ? coverage_row + from : nullptr;
+            if (coverage && std::all_of(coverage, coverage + n, [](uint8_t c) { return c == 0; })) continue;
+            // Lanes past the row's end see the cleared depth; their results are not stored.
+            for (int i = 0; i < N; ++i) depth[i] = i < n ? depth_row[from + i] : 1.0f;
             const simd::V3<vfloat> d = rays_.directions(x0, y);
             const vfloat distance = rays_.distances_from_depth(x0, y, vfloat::load(depth));
             const vfloat far = rays_.far_distances(d);
@@ -56,14 +83,9 @@ void FogPass::run(const Tile& target) const {
             (tr.x * visible).store(t[0]);
             (tr.y * visible).store(t[1]);
             (tr.z * visible).store(t[2]);
-            for (int i = 0; i < n; ++i) {
-                if (!(active >> i & 1u)) continue;
-                // Fog::apply's t L + (1 - t) C per channel.
-                glm::vec4& c = target.colour_at(x0 + i, y);
-                c = glm::vec4(t[0][i] * c.r + (1.0f - t[0][i]) * colour.r, t[1][i] * c.g + (1.0f - t[1][i]) * colour.g,
-                              t[2][i] * c.b + (1.0f - t[2][i]) * colour.b, c.a);
-            }
+            apply_fog(colour_row + 4 * size_t(from), coverage, t[0], t[1], t[2], fog_.colour, n);
         }
+    }
 }
 
 void FogPass::run_reference(const Tile& target) const {
