@@ -6,61 +6,106 @@
 
 namespace tessera {
 
-void CoverageLayers::add_pixel(const Surface* list, int n) {
+void CoverageLayers::set_primary(size_t p, const Surface& surface) {
+    primary_triangle_[p] = surface.triangle;
+    primary_depth_[p] = surface.depth;
+    primary_coverage_[p] = uint8_t(surface.count);
+    if (positions_)
+        primary_centroid_[p] = int(surface.count) == samples_ ? glm::vec2(0.0f) : positions_[surface.first];
+    if (positions_ && samples_ <= 16) primary_mask_[p] = surface.mask;
+}
+
+void CoverageLayers::add_pixel(size_t p, const Surface* list, int n) {
     // Layer 0: the surface with the most samples, the first of them in sample order.
     int best = 0;
     for (int k = 1; k < n; ++k)
         if (list[k].count > list[best].count) best = k;
-    first_.push_back(uint32_t(surfaces_.size()));
-    surfaces_.push_back(list[best]);
+    set_primary(p, list[best]);
     for (int k = 0; k < n; ++k)
-        if (k != best) surfaces_.push_back(list[k]);
+        if (k != best) others_.push_back(list[k]);
     layers_ = std::max(layers_, n);
     covered_ += n > 1 || list[0].triangle != kNoTriangle;
 }
 
+void CoverageLayers::build_uniform(const TileRect& rect, int samples, const glm::vec2* positions, uint32_t triangle,
+                                   float depth) {
+    rect_ = rect;
+    samples_ = samples;
+    positions_ = positions;
+    const size_t area = size_t(rect.width()) * size_t(rect.height());
+    layers_ = area ? 1 : 0;
+    covered_ = triangle != kNoTriangle ? area : 0;
+    primary_triangle_.assign(area, triangle);
+    primary_depth_.assign(area, depth);
+    primary_coverage_.assign(area, uint8_t(samples));
+    if (positions) primary_centroid_.assign(area, glm::vec2(0.0f));
+    if (positions && samples <= 16)
+        primary_mask_.assign(area, samples >= 16 ? uint16_t(0xFFFF) : uint16_t((1u << samples) - 1u));
+    others_.clear();
+    first_.assign(area + 1, 0);
+}
+
 Tile CoverageLayers::layer(int j, const glm::vec4& clear) {
     const size_t w = size_t(rect_.width()), area = w * size_t(rect_.height());
-    triangle_.resize(area);
-    depth_.resize(area);
-    coverage_.resize(area);
-    colour_.assign(area, clear);
     const bool masks = positions_ && samples_ <= 16;
-    if (positions_) centroid_.resize(area);
-    if (masks) mask_.resize(area);
-    for (size_t p = 0; p < area; ++p) {
-        const uint32_t at = first_[p] + uint32_t(j);
-        if (at < first_[p + 1]) {
-            triangle_[p] = surfaces_[at].triangle;
-            depth_[p] = surfaces_[at].depth;
-            coverage_[p] = uint8_t(surfaces_[at].count);
-            if (positions_)
-                centroid_[p] = int(surfaces_[at].count) == samples_ ? glm::vec2(0.0f) : positions_[surfaces_[at].first];
-            if (masks) mask_[p] = surfaces_[at].mask;
-        } else {
-            // Nothing here: no triangle, and a depth nearer than anything, so that passes
-            // which test depth (transparency, marching, fog) find nothing to do either.
-            triangle_[p] = kNoTriangle;
-            depth_[p] = 0.0f;
-            coverage_[p] = 0;
-            if (masks) mask_[p] = 0;
-        }
-    }
+    colour_.assign(area, clear);
     Tile tile;
     tile.rect = rect_;
-    tile.triangle = triangle_.data();
-    tile.depth = depth_.data();
     tile.stride = w;
     tile.colour = colour_.data();
     tile.colour_stride = w;
-    tile.coverage = coverage_.data();
-    tile.centroid = positions_ ? centroid_.data() : nullptr;
+    if (j == 0) {
+        // Handed out as built: passes may change the ids and depths (a marched surface in
+        // front), which matters to nothing after them but the resolve of this layer.
+        tile.triangle = primary_triangle_.data();
+        tile.depth = primary_depth_.data();
+        tile.coverage = layer_coverage_ = primary_coverage_.data();
+        tile.centroid = positions_ ? primary_centroid_.data() : nullptr;
+        if (masks) tile.sample_mask = primary_mask_.data();
+    } else {
+        triangle_.resize(area);
+        depth_.resize(area);
+        coverage_.resize(area);
+        if (positions_) centroid_.resize(area);
+        if (masks) mask_.resize(area);
+        for (size_t p = 0; p < area; ++p) {
+            const uint32_t at = first_[p] + uint32_t(j - 1);
+            if (at < first_[p + 1]) {
+                const Surface& s = others_[at];
+                triangle_[p] = s.triangle;
+                depth_[p] = s.depth;
+                coverage_[p] = uint8_t(s.count);
+                if (positions_)
+                    centroid_[p] = int(s.count) == samples_ ? glm::vec2(0.0f) : positions_[s.first];
+                if (masks) mask_[p] = s.mask;
+            } else {
+                // Nothing here: no triangle, and a depth nearer than anything, so that passes
+                // which test depth (transparency, marching, fog) find nothing to do either.
+                triangle_[p] = kNoTriangle;
+                depth_[p] = 0.0f;
+                coverage_[p] = 0;
+                if (masks) mask_[p] = 0;
+            }
+        }
+        tile.triangle = triangle_.data();
+        tile.depth = depth_.data();
+        tile.coverage = layer_coverage_ = coverage_.data();
+        tile.centroid = positions_ ? centroid_.data() : nullptr;
+        if (masks) tile.sample_mask = mask_.data();
+    }
     if (masks) {
-        tile.sample_mask = mask_.data();
         tile.sample_count = samples_;
         tile.sample_offsets = positions_;
     }
     return tile;
+}
+
+void CoverageLayers::copy_primary(uint32_t* triangle, float* depth, size_t stride) const {
+    const size_t w = size_t(rect_.width());
+    for (size_t y = 0; y < size_t(rect_.height()); ++y) {
+        std::copy_n(primary_triangle_.data() + y * w, w, triangle + y * stride);
+        std::copy_n(primary_depth_.data() + y * w, w, depth + y * stride);
+    }
 }
 
 void CoverageLayers::accumulate(int j, glm::vec4* out, size_t stride) const {
@@ -69,8 +114,8 @@ void CoverageLayers::accumulate(int j, glm::vec4* out, size_t stride) const {
     for (int y = 0; y < rect_.height(); ++y)
         for (size_t x = 0; x < w; ++x) {
             const size_t p = size_t(y) * w + x;
-            if (!coverage_[p]) continue;
-            const glm::vec4 c = colour_[p] * (float(coverage_[p]) * share);
+            if (!layer_coverage_[p]) continue;
+            const glm::vec4 c = colour_[p] * (float(layer_coverage_[p]) * share);
             glm::vec4& o = out[size_t(y) * stride + x];
             o = j == 0 ? c : o + c;
         }

@@ -40,6 +40,9 @@ public:
     template <class SampleAt>
     void build(const TileRect& rect, int samples, const glm::vec2* positions, const SampleAt& sample_at);
 
+    // build() for a rect whose every sample shows `triangle` at window depth `depth`.
+    void build_uniform(const TileRect& rect, int samples, const glm::vec2* positions, uint32_t triangle, float depth);
+
     int layers() const { return layers_; }
     int samples() const { return samples_; }
     // Pixels with at least one sample covered by a triangle.
@@ -52,6 +55,9 @@ public:
     // pixel's sample mask and the positions (Tile::sample_mask), for passes that sample the
     // pixel's surface themselves.
     Tile layer(int j, const glm::vec4& clear);
+    // Layer 0's ids and depths (as built, before any pass) into row-major buffers addressed
+    // from the rect's first pixel with `stride` elements per row.
+    void copy_primary(uint32_t* triangle, float* depth, size_t stride) const;
     // Adds the colour of the last layer() times coverage / samples into `out` (a tile of the
     // rect's size with `stride` elements per row; layer 0 assigns, the others add).
     void accumulate(int j, glm::vec4* out, size_t stride) const;
@@ -64,20 +70,33 @@ private:
         uint16_t first;  // its first sample
         uint16_t mask;   // its samples, bit s: sample s (the first 16)
     };
-    void add_pixel(const Surface* surfaces, int n);
+    // Layer 0 of pixel p (row-major in the rect) is written straight into the arrays layer(0)
+    // hands out; the pixel's other surfaces, if any, are listed in `others_`.
+    void set_primary(size_t p, const Surface& surface);
+    void add_pixel(size_t p, const Surface* surfaces, int n);
 
     TileRect rect_;
     int samples_ = 1, layers_ = 0;
     const glm::vec2* positions_ = nullptr;
     uint64_t covered_ = 0;
-    std::vector<Surface> surfaces_;  // per pixel in row-major order, its list
-    std::vector<uint32_t> first_;    // per pixel, its list's start; one more entry at the end
+    // Layer 0, one entry per pixel: what most pixels of a tile are, with nothing to look up.
+    AlignedVector<uint32_t> primary_triangle_;
+    AlignedVector<float> primary_depth_;
+    std::vector<uint8_t> primary_coverage_;
+    std::vector<glm::vec2> primary_centroid_;
+    std::vector<uint16_t> primary_mask_;
+    // Layers 1 and up: per pixel in row-major order, its other surfaces in sample order of
+    // their first samples; first_[p] .. first_[p + 1] are pixel p's.
+    std::vector<Surface> others_;
+    std::vector<uint32_t> first_;
+    // Layers 1 and up as layer() hands them out.
     AlignedVector<uint32_t> triangle_;
     AlignedVector<float> depth_;
     std::vector<uint8_t> coverage_;
-    std::vector<glm::vec4> colour_;
     std::vector<glm::vec2> centroid_;
     std::vector<uint16_t> mask_;
+    std::vector<glm::vec4> colour_;
+    const uint8_t* layer_coverage_ = nullptr;  // the last layer()'s, for accumulate()
 };
 
 template <class SampleAt>
@@ -86,31 +105,51 @@ void CoverageLayers::build(const TileRect& rect, int samples, const glm::vec2* p
     rect_ = rect;
     samples_ = samples;
     positions_ = positions;
-    layers_ = 0;
     covered_ = 0;
-    surfaces_.clear();
+    const size_t area = size_t(rect.width()) * size_t(rect.height());
+    layers_ = area ? 1 : 0;
+    primary_triangle_.resize(area);
+    primary_depth_.resize(area);
+    primary_coverage_.resize(area);
+    if (positions) primary_centroid_.resize(area);
+    if (positions && samples <= 16) primary_mask_.resize(area);
+    others_.clear();
     first_.clear();
+    const uint16_t all = samples >= 16 ? uint16_t(0xFFFF) : uint16_t((1u << samples) - 1u);
+    uint32_t triangle[256];
+    float depth[256];
     Surface list[256];
+    size_t p = 0;
     for (int y = rect.y0; y < rect.y1; ++y)
-        for (int x = rect.x0; x < rect.x1; ++x) {
+        for (int x = rect.x0; x < rect.x1; ++x, ++p) {
+            bool one = true;
+            for (int s = 0; s < samples; ++s) {
+                sample_at(x, y, s, triangle[s], depth[s]);
+                one = one && triangle[s] == triangle[0];
+            }
+            first_.push_back(uint32_t(others_.size()));
+            if (one) {  // every sample shows one surface: most pixels
+                float nearest = depth[0];
+                for (int s = 1; s < samples; ++s) nearest = depth[s] < nearest ? depth[s] : nearest;
+                set_primary(p, {triangle[0], nearest, uint16_t(samples), 0, all});
+                covered_ += triangle[0] != kNoTriangle;
+                continue;
+            }
             int n = 0;
             for (int s = 0; s < samples; ++s) {
-                uint32_t triangle;
-                float depth;
-                sample_at(x, y, s, triangle, depth);
                 int k = 0;
-                while (k < n && list[k].triangle != triangle) ++k;
+                while (k < n && list[k].triangle != triangle[s]) ++k;
                 const uint16_t bit = s < 16 ? uint16_t(1u << s) : uint16_t(0);
-                if (k == n) list[n++] = {triangle, depth, 1, uint16_t(s), bit};
+                if (k == n) list[n++] = {triangle[s], depth[s], 1, uint16_t(s), bit};
                 else {
-                    list[k].depth = depth < list[k].depth ? depth : list[k].depth;
+                    list[k].depth = depth[s] < list[k].depth ? depth[s] : list[k].depth;
                     ++list[k].count;
                     list[k].mask |= bit;
                 }
             }
-            add_pixel(list, n);
+            add_pixel(p, list, n);
         }
-    first_.push_back(uint32_t(surfaces_.size()));
+    first_.push_back(uint32_t(others_.size()));
 }
 
 }  // namespace tessera

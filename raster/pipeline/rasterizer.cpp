@@ -40,15 +40,22 @@ struct TileScratch {
 
 // A multisampled tile out of its buffers: its surfaces listed as layers, the main surface of
 // each pixel (layer 0) into the frame's visibility, every sample too when kept; the buffers
-// are left cleared for the next tile.
+// are left cleared for the next tile. `drawn`: some triangle was rasterized into the buffers;
+// if none was, every sample still holds the cleared values, one surface for the whole tile
+// (the sky over a landscape, or a frame that only passes draw), listed without reading them.
 void multisampled_tile(TileBuffers& buffers, const TileRect& rect, VisibilityBuffer& visibility, bool keep_samples,
-                       CoverageLayers& layers) {
+                       bool drawn, CoverageLayers& layers) {
     const size_t plane = buffers.plane();
-    layers.build(rect, buffers.samples, sample_positions(buffers.samples), [&](int x, int y, int s, uint32_t& triangle, float& depth) {
-        const size_t i = size_t(s) * plane + buffers.index(x - rect.x0, y - rect.y0);
-        triangle = buffers.triangle[i];
-        depth = window_depth(buffers.depth[i]);
-    });
+    if (drawn)
+        layers.build(rect, buffers.samples, sample_positions(buffers.samples),
+                     [&](int x, int y, int s, uint32_t& triangle, float& depth) {
+                         const size_t i = size_t(s) * plane + buffers.index(x - rect.x0, y - rect.y0);
+                         triangle = buffers.triangle[i];
+                         depth = window_depth(buffers.depth[i]);
+                     });
+    else
+        layers.build_uniform(rect, buffers.samples, sample_positions(buffers.samples), buffers.triangle[0],
+                             window_depth(buffers.depth[0]));
     if (keep_samples)
         for (int y = rect.y0; y < rect.y1; ++y)
             for (int x = rect.x0; x < rect.x1; ++x)
@@ -57,14 +64,9 @@ void multisampled_tile(TileBuffers& buffers, const TileRect& rect, VisibilityBuf
                     visibility.sample_triangle[visibility.sample_index(x, y, s)] = buffers.triangle[i];
                     visibility.sample_depth[visibility.sample_index(x, y, s)] = window_depth(buffers.depth[i]);
                 }
-    const Tile primary = layers.layer(0, glm::vec4(0.0f));
-    for (int y = rect.y0; y < rect.y1; ++y)
-        for (int x = rect.x0; x < rect.x1; ++x) {
-            const size_t i = size_t(y) * size_t(visibility.width) + size_t(x);
-            visibility.triangle[i] = primary.triangle_at(x, y);
-            visibility.depth[i] = primary.depth_at(x, y);
-        }
-    buffers.clear(buffers.size, buffers.samples);
+    const size_t origin = size_t(rect.y0) * size_t(visibility.width) + size_t(rect.x0);
+    layers.copy_primary(visibility.triangle.data() + origin, visibility.depth.data() + origin, size_t(visibility.width));
+    if (drawn) buffers.clear(buffers.size, buffers.samples);
 }
 
 }  // namespace
@@ -185,9 +187,11 @@ void Rasterizer::render(const Mesh& mesh, const glm::mat4& view_projection, cons
         TileBuffers& buffers = scratch.buffers;
         // Else flush() or the multisampled path below cleared them.
         if (buffers.size != grid.size || buffers.samples != samples) buffers.clear(grid.size, samples);
+        bool drawn = false;
         for (const ChunkBins& chunk : s.chunks)
             for_each_setup(chunk, tile, source, [&](const TriangleSetup& t) {
                 if (t.transparent) return;
+                drawn = true;
                 if (options.depth_only) rasterize_depth(t, rect, buffers);
                 else rasterize_opaque(t, rect, buffers);
             });
@@ -204,7 +208,7 @@ void Rasterizer::render(const Mesh& mesh, const glm::mat4& view_projection, cons
             return context;
         };
         if (samples > 1) {
-            multisampled_tile(buffers, rect, visibility, keep_samples, scratch.layers);
+            multisampled_tile(buffers, rect, visibility, keep_samples, drawn, scratch.layers);
             if (stats) visible_pixels += scratch.layers.covered_pixels();
             if (!run_passes) return;
             // The passes once per layer of distinct surfaces, resolved into the colour tile.
