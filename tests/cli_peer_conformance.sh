@@ -25,6 +25,8 @@ fi
 command -v python3 >/dev/null || { echo "SKIPPED: python3 is not installed"; exit 77; }
 tmp=$(mktemp -d)
 trap 'rm -rf "$tmp"' EXIT
+# Sanitize build: OSMesa's own leaks are suppressed (lsan_osmesa.supp says which).
+export LSAN_OPTIONS="${LSAN_OPTIONS:+$LSAN_OPTIONS:}suppressions=$(cd "$(dirname "$0")" && pwd)/lsan_osmesa.supp:print_suppressions=0"
 
 # samples FILE X Y [X Y...] -> per pixel (X, Y), one line of its sample ids (multisampled TSID)
 samples() {
