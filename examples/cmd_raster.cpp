@@ -5,9 +5,12 @@
 // file formats and the `frame_ms median=X min=Y max=Z` line are a contract.
 // --shade material renders the model with its own materials instead (issue 18): the scene
 // renderer both renderers share (render/frame_renderer.h), lit by the default light rig.
+// --shade id --samples N finds visibility per sample and writes every sample's id (--out-id),
+// for the comparison with the peer's multisampled ids (issue 17).
 #include <algorithm>
 #include <chrono>
 #include <memory>
+#include <span>
 #include <cstdio>
 #include <vector>
 
@@ -102,10 +105,16 @@ int run(const Options& o) {
     parse_size(o.size, "--size", width, height);
     if (o.shade == "material") return run_material(o, width, height);
     if (o.shadows != "none") throw UsageError("--shadows goes with --shade material");
-    // The conformance shaders are defined at pixel centres, as their peer renders them.
-    if (o.samples != 1) throw UsageError("--samples goes with --shade material");
     const pipeline::CullMode cull = parse_cull(o.cull);
     const shade::ShadeMode shade = shade::parse_shade_mode(o.shade);
+    // The conformance shaders are defined at pixel centres, as their peer renders them; with
+    // --samples only visibility is multisampled, for the per-sample ids the peer's multisampled
+    // ids are compared with: --shade id, and no colour or depth image.
+    const bool multisampled = o.samples > 1;
+    if (multisampled && shade != shade::ShadeMode::id)
+        throw UsageError("--samples goes with --shade id (per-sample ids) or --shade material");
+    if (multisampled && (!o.out_color.empty() || !o.out_depth.empty()))
+        throw UsageError("--shade id --samples N writes per-sample ids (--out-id), not --out-color or --out-depth");
     if (!o.out_color.empty() && !io::image_format_supported(o.out_color))
         throw UsageError("--out-color: no image writer for '" + o.out_color + "'");
     for (const std::string* path : {&o.out_color, &o.out_id, &o.out_depth})  // before the work
@@ -134,10 +143,19 @@ int run(const Options& o) {
     // depth files, and the depth view (its grey range spans the whole frame). Otherwise each
     // tile is shaded from its cache-resident buffers and only finished pixels reach memory.
     options.frame_visibility = !o.out_id.empty() || !o.out_depth.empty() || shade == shade::ShadeMode::depth;
+    if (multisampled) {
+        // Visibility per sample and no shading pass (RasterOptions::samples asks for the
+        // colour tile, which no pass then writes).
+        options.samples = o.samples;
+        options.tile_color = true;
+        options.frame_visibility = true;
+        options.keep_samples = !o.out_id.empty();
+    }
     pipeline::Rasterizer rasterizer;
     VisibilityBuffer visibility;
     std::vector<uint32_t> rgba8(size_t(width) * height);
-    const pipeline::TilePass passes[] = {shade::make_stamp_shading_pass(shade, camera, rgba8)};
+    const pipeline::TilePass shading[] = {shade::make_stamp_shading_pass(shade, camera, rgba8)};
+    const std::span<const pipeline::TilePass> passes = multisampled ? std::span<const pipeline::TilePass>() : shading;
     const glm::mat4 view_projection = camera.view_projection();
 
     const int frames = std::max(1, o.repeat);
@@ -156,9 +174,10 @@ int run(const Options& o) {
     for (int f = 0; f < frames; ++f) {
         const auto start = std::chrono::steady_clock::now();
         if (raytrace) {
-            embree::cast_primary_rays(*scene, view_projection, width, height, visibility);
+            embree::cast_primary_rays(*scene, view_projection, width, height, visibility, embree::RayPacket::x16, {},
+                                      o.samples);
             const auto traced = std::chrono::steady_clock::now();
-            embree::run_tile_passes(mesh, view_projection, viewport, visibility, passes);
+            if (!passes.empty()) embree::run_tile_passes(mesh, view_projection, viewport, visibility, passes);
             trace_ms = std::chrono::duration<double, std::milli>(traced - start).count();
             shade_ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - traced).count();
         } else {
@@ -217,12 +236,13 @@ Run define_raster(CLI::App& root) {
     cmd->add_option("--shadows", o.shadows, "none | map | rays (with --shade material)")
         ->check(CLI::IsMember({"none", "map", "rays"}))
         ->default_val("none");
-    add_samples_option(*cmd, o.samples, "(with --shade material; default 1)");
+    add_samples_option(*cmd, o.samples,
+                       "(with --shade material; with --shade id, --out-id writes every sample's id; default 1)");
     add_shadow_map_options(*cmd, o.map_flags);
     cmd->add_option("--cull", o.cull, "none | back | front (front faces are counter-clockwise)")->default_val("none");
     add_threads_option(*cmd, o.threads);
     cmd->add_option("--out-color", o.out_color, "colour image (PNG, EXR, TIFF...; 8-bit RGB)");
-    cmd->add_option("--out-id", o.out_id, "triangle ids (TSID: header, then uint32 LE per pixel)");
+    cmd->add_option("--out-id", o.out_id, "triangle ids (TSID: header, then uint32 LE per pixel, or per sample with --samples)");
     cmd->add_option("--out-depth", o.out_depth, "window depth (PFM, rows bottom to top)");
     cmd->add_option("--repeat", o.repeat, "render K frames and print 'frame_ms median=X min=Y max=Z'")
         ->check(CLI::Range(1, 100000));

@@ -1,5 +1,5 @@
 #!/usr/bin/env python3
-"""Compares two triangle-id images (TSID, issue 3) pixel for pixel.
+"""Compares two triangle-id images (TSID, issue 3) pixel for pixel, or sample for sample.
 
   compare-ids.py A.id B.id [--max-fraction F] [--show N]
 
@@ -7,8 +7,11 @@ Prints one summary line:
   ids: 2073600 pixels, 12 differ (0.000579%): 3 covered only in A, 2 only in B, 7 by
   different triangles
 then, with --show N, the first N differing pixels as "x y idA idB" (rows top to bottom).
-Exits 1 when the fraction of differing pixels exceeds --max-fraction (default: never),
-2 on unreadable or mismatched files.
+Multisampled files (header "TSID W H S": S ids per pixel, a pixel's samples adjacent) are
+compared sample for sample: the line counts samples ("ids: 921600 samples (4 per pixel), ...")
+and the differing ones show as "x y s idA idB". Both files must have the same sample count.
+Exits 1 when the fraction of differing pixels (samples) exceeds --max-fraction (default:
+never), 2 on unreadable or mismatched files.
 """
 import argparse
 import sys
@@ -24,17 +27,20 @@ def read_tsid(path):
     except OSError as e:
         sys.exit(f"compare-ids: cannot read '{path}': {e.strerror}")
     end = data.find(b"\n")
-    words = data[:end].split() if end > 0 else []
-    if len(words) != 3 or words[0] != b"TSID":
-        sys.exit(f"compare-ids: '{path}' is not a TSID file (header 'TSID W H')")
+    words = data[:end].split(b" ") if end > 0 else []
+    if len(words) not in (3, 4) or words[0] != b"TSID" or not all(w.isdigit() for w in words[1:]):
+        sys.exit(f"compare-ids: '{path}' is not a TSID file (header 'TSID W H' or 'TSID W H S')")
     w, h = int(words[1]), int(words[2])
+    samples = int(words[3]) if len(words) == 4 else 1
+    if len(words) == 4 and samples not in (4, 8, 16):
+        sys.exit(f"compare-ids: '{path}': {samples} is not a sample count (4, 8 or 16)")
     ids = array("I")
     ids.frombytes(data[end + 1:])
     if sys.byteorder != "little":
         ids.byteswap()
-    if len(ids) != w * h:
-        sys.exit(f"compare-ids: '{path}': {len(ids)} ids for {w}x{h} pixels")
-    return w, h, ids
+    if len(ids) != w * h * samples:
+        sys.exit(f"compare-ids: '{path}': {len(ids)} ids for {w}x{h} pixels x {samples} samples")
+    return w, h, samples, ids
 
 
 def main():
@@ -44,10 +50,11 @@ def main():
     parser.add_argument("--max-fraction", type=float, default=None)
     parser.add_argument("--show", type=int, default=0)
     args = parser.parse_args()
-    wa, ha, a = read_tsid(args.a)
-    wb, hb, b = read_tsid(args.b)
-    if (wa, ha) != (wb, hb):
-        print(f"compare-ids: sizes differ: {wa}x{ha} vs {wb}x{hb}", file=sys.stderr)
+    wa, ha, na, a = read_tsid(args.a)
+    wb, hb, nb, b = read_tsid(args.b)
+    if (wa, ha, na) != (wb, hb, nb):
+        print(f"compare-ids: sizes differ: {wa}x{ha} x {na} samples vs {wb}x{hb} x {nb} samples",
+              file=sys.stderr)
         sys.exit(2)
     only_a = only_b = other = 0
     shown = []
@@ -61,12 +68,14 @@ def main():
                 else:
                     other += 1
                 if len(shown) < args.show:
-                    shown.append(f"{i % wa} {i // wa} {x if x != EMPTY else '-'} "
-                                 f"{y if y != EMPTY else '-'}")
-    total = wa * ha
+                    pixel = i // na
+                    where = f"{pixel % wa} {pixel // wa}" + (f" {i % na}" if na > 1 else "")
+                    shown.append(f"{where} {x if x != EMPTY else '-'} {y if y != EMPTY else '-'}")
+    total = wa * ha * na
+    unit = "pixels" if na == 1 else f"samples ({na} per pixel)"
     differ = only_a + only_b + other
     fraction = differ / total if total else 0.0
-    print(f"ids: {total} pixels, {differ} differ ({100 * fraction:.6f}%): {only_a} covered only "
+    print(f"ids: {total} {unit}, {differ} differ ({100 * fraction:.6f}%): {only_a} covered only "
           f"in A, {only_b} only in B, {other} by different triangles")
     for line in shown:
         print(line)

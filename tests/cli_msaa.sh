@@ -2,7 +2,8 @@
 # MSAA through the command (--samples, "render": {"samples": N}): example scenes render with
 # --samples 4 (small, one frame) and differ from one sample; the scene file's count is used
 # unless the flag overrides it, with the same bytes for 1 and 2 threads; bad counts are
-# usage errors naming --samples. (Every example scene at full size: BENCHMARKS.md.)
+# usage errors naming --samples. `raster --shade id --samples N` writes per-sample ids.
+# (Every example scene at full size: BENCHMARKS.md.)
 set -u
 tessera=$1
 fail() { echo "FAIL: $*"; exit 1; }
@@ -41,4 +42,25 @@ grep -q "samples" <<<"$err" || fail "a bad samples value in a file should be nam
 err=$("$tessera" raster --mesh "$dir/none.obj" --shade phong --samples 4 2>&1)
 [ $? -eq 2 ] || fail "raster --shade phong --samples 4 should be a usage error"
 grep -q "samples" <<<"$err" || fail "raster --samples with --shade phong: $err"
+
+# raster --shade id --samples N: every sample's id ("TSID W H N", N ids per pixel), from the
+# rasterizer and from the ray caster, the same for 1 and 2 threads; one sample keeps the
+# three-field header; no colour or depth image with it.
+"$tessera" testmesh --kind sphere --count 800 --out "$dir/s.obj" --camera-out "$dir/s.cam" >/dev/null || fail "testmesh exited $?"
+ids() { "$tessera" raster --mesh "$dir/s.obj" --camera "$dir/s.cam" --size 40x24 --shade id "$@"; }
+ids --samples 4 --threads 1 --out-id "$dir/r1.id" || fail "raster --shade id --samples 4 exited $?"
+ids --samples 4 --threads 2 --out-id "$dir/r2.id" || fail "raster --shade id --samples 4 --threads 2 exited $?"
+[ "$(head -n 1 "$dir/r1.id")" = "TSID 40 24 4" ] || fail "multisampled TSID header: $(head -n 1 "$dir/r1.id")"
+[ "$(stat -c %s "$dir/r1.id")" -eq $((13 + 40 * 24 * 4 * 4)) ] || fail "multisampled TSID size $(stat -c %s "$dir/r1.id")"
+cmp -s "$dir/r1.id" "$dir/r2.id" || fail "per-sample ids differ between 1 and 2 threads"
+ids --samples 16 --renderer raytrace --out-id "$dir/rt.id" || fail "raytrace --samples 16 exited $?"
+[ "$(head -n 1 "$dir/rt.id")" = "TSID 40 24 16" ] || fail "ray-cast multisampled TSID header: $(head -n 1 "$dir/rt.id")"
+ids --samples 1 --out-id "$dir/one.id" || fail "raster --shade id --samples 1 exited $?"
+[ "$(head -n 1 "$dir/one.id")" = "TSID 40 24" ] || fail "one sample changed the TSID header: $(head -n 1 "$dir/one.id")"
+for out in --out-color=$dir/c.png --out-depth=$dir/d.pfm; do
+    err=$(ids --samples 4 "$out" 2>&1)
+    [ $? -eq 2 ] || fail "raster --shade id --samples 4 $out should be a usage error"
+    grep -q -- "--out-id" <<<"$err" || fail "raster --samples 4 $out: $err"
+    [ -e "$dir/c.png" ] || [ -e "$dir/d.pfm" ] && fail "a refused run wrote ${out#*=}"
+done
 echo "ok"

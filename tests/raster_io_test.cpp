@@ -127,5 +127,36 @@ TEST(RasterIo, TsidAndPfmLayout) {
     std::filesystem::remove(dir / "t.pfm");
 }
 
+// Multisampled ids: the sample count in the header, then the samples of each pixel adjacent;
+// one sample keeps the three-field header, and malformed counts are refused.
+TEST(RasterIo, TsidPerSample) {
+    VisibilityBuffer v;
+    v.reset(2, 1);
+    v.samples = 4;
+    v.sample_triangle = {0, 1, 2, 3, 4, 5, 6, kNoTriangle};
+    const auto dir = std::filesystem::temp_directory_path();
+    io::write_tsid(dir / "ms.id", v);
+    std::ifstream file(dir / "ms.id", std::ios::binary);
+    const std::string text((std::istreambuf_iterator<char>(file)), {});
+    ASSERT_EQ(text.size(), std::strlen("TSID 2 1 4\n") + 8 * 4);
+    EXPECT_EQ(text.rfind("TSID 2 1 4\n", 0), 0u);
+    uint32_t second_pixel_first_sample;
+    std::memcpy(&second_pixel_first_sample, text.data() + std::strlen("TSID 2 1 4\n") + 4 * 4, 4);
+    EXPECT_EQ(second_pixel_first_sample, 4u);
+    const VisibilityBuffer back = io::read_tsid(dir / "ms.id");
+    EXPECT_EQ(back.samples, 4);
+    EXPECT_EQ(back.sample_triangle, v.sample_triangle);
+    EXPECT_EQ(back.triangle.size(), 2u);
+
+    v.sample_triangle.pop_back();  // not one id per sample
+    EXPECT_THROW(io::write_tsid(dir / "ms.id", v), std::invalid_argument);
+    for (const char* header : {"TSID 2 1 3\n", "TSID 2 1 1\n", "TSID 2 1 x\n", "TSID 2 1 4 \n"}) {
+        std::ofstream(dir / "bad.id", std::ios::binary) << header << std::string(8 * 4, '\0');
+        EXPECT_THROW(io::read_tsid(dir / "bad.id"), Error) << header;
+    }
+    std::ofstream(dir / "short.id", std::ios::binary) << "TSID 2 1 4\n" << std::string(7 * 4, '\0');
+    EXPECT_THROW(io::read_tsid(dir / "short.id"), Error);
+}
+
 }  // namespace
 }  // namespace tessera

@@ -11,6 +11,7 @@
 #include <string>
 
 #include "examples/peer/peer_shaders.h"
+#include "raster/pipeline/sample_pattern.h"
 #include "raster/core/error.h"
 
 namespace tessera::peer {
@@ -55,11 +56,10 @@ std::string fragment_defines(const FrameOptions& options) {
     return defines;
 }
 
-GLuint link_program(const FrameOptions& options) {
+GLuint link_program(const std::string& vertex_source, const std::string& fragment_source) {
     const std::string version = "#version 330 core\n";
-    const GLuint vertex = compile(GL_VERTEX_SHADER, version + kVertexShader);
-    const GLuint fragment =
-        compile(GL_FRAGMENT_SHADER, version + fragment_defines(options) + kFragmentShader);
+    const GLuint vertex = compile(GL_VERTEX_SHADER, version + vertex_source);
+    const GLuint fragment = compile(GL_FRAGMENT_SHADER, version + fragment_source);
     const GLuint program = glCreateProgram();
     glAttachShader(program, vertex);
     glAttachShader(program, fragment);
@@ -130,7 +130,7 @@ GlFrame::GlFrame(const Mesh& mesh, const Camera& camera, const FrameOptions& opt
     if (mesh.indices.size() > size_t(std::numeric_limits<GLsizei>::max()))
         throw Error("llvmpipe: " + std::to_string(mesh.triangle_count()) +
                     " triangles are more than one OpenGL draw call takes");
-    program_ = link_program(options);
+    program_ = link_program(kVertexShader, fragment_defines(options) + kFragmentShader);
     glUseProgram(program_);
     // Rows top to bottom, and tessera's fill rule. llvmpipe applies its rule in framebuffer
     // rows, including an edge for the triangle at the larger row (D3D's top-left rule when
@@ -172,15 +172,19 @@ GlFrame::GlFrame(const Mesh& mesh, const Camera& camera, const FrameOptions& opt
     glGenRenderbuffers(3, renderbuffers_);
     glGenFramebuffers(1, &framebuffer_);
     glBindFramebuffer(GL_FRAMEBUFFER, framebuffer_);
-    const GLenum formats[3] = {GL_RGBA8, GL_R32UI, GL_DEPTH_COMPONENT32F};
-    const GLenum attachments[3] = {GL_COLOR_ATTACHMENT0, GL_COLOR_ATTACHMENT1,
-                                   GL_DEPTH_ATTACHMENT};
-    for (int i = 0; i < 3; ++i) {
-        if (i == 1 && !options.triangle_ids) continue;
-        glBindRenderbuffer(GL_RENDERBUFFER, renderbuffers_[i]);
-        glRenderbufferStorage(GL_RENDERBUFFER, formats[i], options.width, options.height);
-        glFramebufferRenderbuffer(GL_FRAMEBUFFER, attachments[i], GL_RENDERBUFFER,
-                                  renderbuffers_[i]);
+    if (options.samples > 1) {
+        make_multisample_targets();
+    } else {
+        const GLenum formats[3] = {GL_RGBA8, GL_R32UI, GL_DEPTH_COMPONENT32F};
+        const GLenum attachments[3] = {GL_COLOR_ATTACHMENT0, GL_COLOR_ATTACHMENT1,
+                                       GL_DEPTH_ATTACHMENT};
+        for (int i = 0; i < 3; ++i) {
+            if (i == 1 && !options.triangle_ids) continue;
+            glBindRenderbuffer(GL_RENDERBUFFER, renderbuffers_[i]);
+            glRenderbufferStorage(GL_RENDERBUFFER, formats[i], options.width, options.height);
+            glFramebufferRenderbuffer(GL_FRAMEBUFFER, attachments[i], GL_RENDERBUFFER,
+                                      renderbuffers_[i]);
+        }
     }
     const GLenum draw_buffers[2] = {GL_COLOR_ATTACHMENT0, GL_COLOR_ATTACHMENT1};
     glDrawBuffers(options.triangle_ids ? 2 : 1, draw_buffers);
@@ -201,7 +205,111 @@ GlFrame::GlFrame(const Mesh& mesh, const Camera& camera, const FrameOptions& opt
     if (glGetError() != GL_NO_ERROR) throw Error("llvmpipe: OpenGL set-up failed");
 }
 
+// Multisample colour and depth renderbuffers and a multisample id texture (a texture, so the
+// copy pass can fetch its samples), refused unless llvmpipe gives exactly the count asked for;
+// then the positions llvmpipe samples at, matched with tessera's pattern.
+void GlFrame::make_multisample_targets() {
+    const int samples = options_.samples;
+    const std::string asked = "llvmpipe: --samples " + std::to_string(samples) + ": ";
+    GLint max_samples = 0, max_integer_samples = 0;
+    glGetIntegerv(GL_MAX_SAMPLES, &max_samples);
+    glGetIntegerv(GL_MAX_INTEGER_SAMPLES, &max_integer_samples);
+    if (samples > max_samples)
+        throw Error(asked + "this llvmpipe multisamples at most " + std::to_string(max_samples) +
+                    " samples (GL_MAX_SAMPLES)");
+    if (options_.triangle_ids && samples > max_integer_samples)
+        throw Error(asked + "this llvmpipe multisamples integer (id) targets at most " +
+                    std::to_string(max_integer_samples) + " samples (GL_MAX_INTEGER_SAMPLES)");
+    const auto check_count = [&](GLint given, const char* target) {
+        if (glGetError() != GL_NO_ERROR)
+            throw Error(asked + "cannot make a " + std::to_string(options_.width) + "x" +
+                        std::to_string(options_.height) + " multisample " + target + " target");
+        if (given != samples)
+            throw Error(asked + "llvmpipe gives the " + target + " target " + std::to_string(given) +
+                        " samples instead");
+    };
+    const GLenum formats[2] = {GL_RGBA8, GL_DEPTH_COMPONENT32F};
+    const GLenum attachments[2] = {GL_COLOR_ATTACHMENT0, GL_DEPTH_ATTACHMENT};
+    const char* names[2] = {"colour", "depth"};
+    for (int i = 0; i < 2; ++i) {
+        const GLuint renderbuffer = renderbuffers_[i == 0 ? 0 : 2];
+        glBindRenderbuffer(GL_RENDERBUFFER, renderbuffer);
+        glRenderbufferStorageMultisample(GL_RENDERBUFFER, samples, formats[i], options_.width,
+                                         options_.height);
+        GLint given = 0;
+        glGetRenderbufferParameteriv(GL_RENDERBUFFER, GL_RENDERBUFFER_SAMPLES, &given);
+        check_count(given, names[i]);
+        glFramebufferRenderbuffer(GL_FRAMEBUFFER, attachments[i], GL_RENDERBUFFER, renderbuffer);
+    }
+    if (options_.triangle_ids) {
+        // Fixed sample locations: the same positions in every pixel, and required beside
+        // renderbuffers for the framebuffer to be complete.
+        glGenTextures(1, &sample_texture_);
+        glBindTexture(GL_TEXTURE_2D_MULTISAMPLE, sample_texture_);
+        glTexImage2DMultisample(GL_TEXTURE_2D_MULTISAMPLE, samples, GL_R32UI, options_.width,
+                                options_.height, GL_TRUE);
+        GLint given = 0;
+        glGetTexLevelParameteriv(GL_TEXTURE_2D_MULTISAMPLE, 0, GL_TEXTURE_SAMPLES, &given);
+        check_count(given, "id");
+        glFramebufferTexture2D(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT1, GL_TEXTURE_2D_MULTISAMPLE,
+                               sample_texture_, 0);
+
+        copy_program_ = link_program(kCopySampleVertexShader, kCopySampleFragmentShader);
+        glUseProgram(copy_program_);
+        glUniform1i(glGetUniformLocation(copy_program_, "ids"), 0);
+        glUseProgram(program_);
+        glGenVertexArrays(1, &copy_vertex_array_);  // no attributes, but core profile draws need one
+        glGenRenderbuffers(1, &copy_renderbuffer_);
+        glBindRenderbuffer(GL_RENDERBUFFER, copy_renderbuffer_);
+        glRenderbufferStorage(GL_RENDERBUFFER, GL_R32UI, options_.width, options_.height);
+        glGenFramebuffers(1, &copy_framebuffer_);
+        glBindFramebuffer(GL_FRAMEBUFFER, copy_framebuffer_);
+        glFramebufferRenderbuffer(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_RENDERBUFFER,
+                                  copy_renderbuffer_);
+        if (glCheckFramebufferStatus(GL_FRAMEBUFFER) != GL_FRAMEBUFFER_COMPLETE)
+            throw Error("llvmpipe: cannot make the " + std::to_string(options_.width) + "x" +
+                        std::to_string(options_.height) + " target the samples are copied into");
+        glBindFramebuffer(GL_FRAMEBUFFER, framebuffer_);
+    }
+
+    // GL_SAMPLE_POSITION of a framebuffer object is in framebuffer rows (only window-system
+    // framebuffers are reported flipped), which are tessera's top-down rows here (see the y flip
+    // above), so it compares directly with tessera's offsets from the pixel centre.
+    const glm::vec2* tessera_positions = pipeline::sample_positions(samples);
+    gl_positions_.resize(size_t(samples));
+    for (int s = 0; s < samples; ++s)
+        glGetMultisamplefv(GL_SAMPLE_POSITION, GLuint(s), &gl_positions_[size_t(s)].x);
+    gl_sample_of_.assign(size_t(samples), -1);
+    for (int s = 0; s < samples; ++s)
+        for (int g = 0; g < samples; ++g)
+            if (gl_positions_[size_t(g)] == tessera_positions[s] + glm::vec2(0.5f)) gl_sample_of_[size_t(s)] = g;
+}
+
+std::string GlFrame::sample_position_mismatch() const {
+    const auto list = [](const glm::vec2* p, size_t n) {
+        std::string text;
+        for (size_t i = 0; i < n; ++i)
+            text += (i ? " (" : "(") + std::to_string(p[i].x) + "," + std::to_string(p[i].y) + ")";
+        return text;
+    };
+    for (int g : gl_sample_of_)
+        if (g < 0) {
+            std::vector<glm::vec2> tessera(size_t(options_.samples));
+            for (size_t s = 0; s < tessera.size(); ++s)
+                tessera[s] = pipeline::sample_positions(options_.samples)[s] + glm::vec2(0.5f);
+            return "llvmpipe's " + std::to_string(options_.samples) + "-sample positions " +
+                   list(gl_positions_.data(), gl_positions_.size()) + " are not tessera's " +
+                   list(tessera.data(), tessera.size()) + ": their ids are not comparable sample for sample";
+        }
+    return {};
+}
+
 GlFrame::~GlFrame() {
+    glDeleteFramebuffers(1, &copy_framebuffer_);
+    glDeleteRenderbuffers(1, &copy_renderbuffer_);
+    glDeleteVertexArrays(1, &copy_vertex_array_);
+    glDeleteProgram(copy_program_);
+    glDeleteTextures(1, &sample_texture_);
     glDeleteFramebuffers(1, &framebuffer_);
     glDeleteRenderbuffers(3, renderbuffers_);
     glDeleteBuffers(4, buffers_);
@@ -238,7 +346,43 @@ std::vector<uint8_t> GlFrame::colour_rgb8() const {
     return read<uint8_t>(GL_COLOR_ATTACHMENT0, GL_RGB, GL_UNSIGNED_BYTE, 3);
 }
 
+// One pass per sample: the copy program fetches sample gl_sample_of_[s] of every pixel into
+// the single-sample target, which is read back into tessera's sample s.
+VisibilityBuffer GlFrame::sample_ids() const {
+    const int samples = options_.samples;
+    VisibilityBuffer visibility;
+    visibility.reset(options_.width, options_.height);
+    visibility.samples = samples;
+    visibility.sample_triangle.assign(visibility.triangle.size() * size_t(samples), kNoTriangle);
+    glBindFramebuffer(GL_FRAMEBUFFER, copy_framebuffer_);
+    glDisable(GL_DEPTH_TEST);
+    glDisable(GL_CULL_FACE);
+    glUseProgram(copy_program_);
+    glBindVertexArray(copy_vertex_array_);
+    glActiveTexture(GL_TEXTURE0);
+    glBindTexture(GL_TEXTURE_2D_MULTISAMPLE, sample_texture_);
+    for (int s = 0; s < samples; ++s) {
+        glUniform1i(glGetUniformLocation(copy_program_, "sample_index"), gl_sample_of_[size_t(s)]);
+        glDrawArrays(GL_TRIANGLES, 0, 3);
+        const std::vector<uint32_t> ids = read<uint32_t>(GL_COLOR_ATTACHMENT0, GL_RED_INTEGER, GL_UNSIGNED_INT, 1);
+        for (size_t p = 0; p < ids.size(); ++p)
+            visibility.sample_triangle[p * size_t(samples) + size_t(s)] = ids[p] - 1;  // 0 (empty) wraps to kNoTriangle
+    }
+    // Back to the frame's state, for the next render().
+    glBindFramebuffer(GL_FRAMEBUFFER, framebuffer_);
+    glUseProgram(program_);
+    glBindVertexArray(vertex_array_);
+    glEnable(GL_DEPTH_TEST);
+    if (options_.cull != pipeline::CullMode::none) glEnable(GL_CULL_FACE);
+    return visibility;
+}
+
 VisibilityBuffer GlFrame::visibility() const {
+    if (options_.samples > 1) {
+        if (!options_.triangle_ids) throw Error("llvmpipe: a multisampled frame reads back its ids only");
+        if (const std::string differ = sample_position_mismatch(); !differ.empty()) throw Error(differ);
+        return sample_ids();
+    }
     VisibilityBuffer visibility;
     visibility.reset(options_.width, options_.height);
     const std::vector<float> depth = read<float>(GL_DEPTH_ATTACHMENT, GL_DEPTH_COMPONENT, GL_FLOAT, 1);

@@ -28,6 +28,7 @@ struct Options {
     int threads = 0;
     std::string out_color, out_id, out_depth;
     int repeat = 0;
+    int samples = 1;
     bool stats = false;
 };
 
@@ -41,6 +42,10 @@ int run(const Options& o) {
     frame_options.shade = shade::parse_shade_mode(o.shade);
     frame_options.cull = cli::parse_cull(o.cull);
     frame_options.triangle_ids = !o.out_id.empty();
+    frame_options.samples = o.samples;
+    // As `tessera raster --shade id --samples N`: a multisampled frame is compared by its ids.
+    if (o.samples > 1 && (!o.out_color.empty() || !o.out_depth.empty()))
+        throw cli::UsageError("--samples N writes per-sample ids (--out-id), not --out-color or --out-depth");
     if (!o.out_color.empty() && !io::image_format_supported(o.out_color))
         throw cli::UsageError("--out-color: no image writer for '" + o.out_color + "'");
     const Camera camera = cli::make_camera(o.camera, width, height);
@@ -67,6 +72,12 @@ int run(const Options& o) {
                     context.core_profile() ? "core" : "compatibility",
                     std::getenv("LP_NUM_THREADS") ? std::getenv("LP_NUM_THREADS") : "default",
                     mesh.triangle_count(), width, height);
+    if (o.stats && o.samples > 1) {
+        std::printf("peer: %d samples at (GL_SAMPLE_POSITION, pixel units, top-down rows)", o.samples);
+        for (const glm::vec2& p : frame.gl_sample_positions()) std::printf(" (%g,%g)", p.x, p.y);
+        const std::string mismatch = frame.sample_position_mismatch();
+        std::printf("; %s\n", mismatch.empty() ? "tessera's positions" : mismatch.c_str());
+    }
 
     if (!o.out_color.empty()) {
         const std::vector<uint8_t> rgb = frame.colour_rgb8();
@@ -101,7 +112,13 @@ int main(int argc, char** argv) {
         ->default_val("none");
     tessera::cli::add_threads_option(app, o.threads);
     app.add_option("--out-color", o.out_color, "colour image (PNG, EXR, TIFF...; 8-bit RGB)");
-    app.add_option("--out-id", o.out_id, "triangle ids (TSID: header, then uint32 LE per pixel)");
+    app.add_option("--out-id", o.out_id,
+                   "triangle ids (TSID: header, then uint32 LE per pixel, or per sample with --samples)");
+    app.add_option("--samples", o.samples,
+                   "MSAA samples per pixel (multisample targets; refused unless llvmpipe has that count "
+                   "for every target); --out-id then writes every sample's id in tessera's sample order")
+        ->check(CLI::IsMember({1, 4, 8, 16}))
+        ->default_val(1);
     app.add_option("--out-depth", o.out_depth, "window depth (PFM, rows bottom to top)");
     app.add_option("--repeat", o.repeat, "render K timed frames and print 'frame_ms median=X min=Y max=Z'")
         ->check(CLI::Range(1, 100000));

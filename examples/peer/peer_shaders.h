@@ -77,4 +77,23 @@ void main() {
 }
 )";
 
+// Multisampled frames: one sample of the id target copied into a single-sample target, so
+// that glReadPixels (which takes no multisample buffer) reads every sample, one pass each. The
+// vertices are a triangle that covers the viewport, made from gl_VertexID alone.
+inline constexpr const char* kCopySampleVertexShader = R"(
+void main() {
+    vec2 corner = vec2((gl_VertexID << 1) & 2, gl_VertexID & 2);  // (0,0) (2,0) (0,2)
+    gl_Position = vec4(corner * 2.0 - 1.0, 0.0, 1.0);
+}
+)";
+
+inline constexpr const char* kCopySampleFragmentShader = R"(
+uniform usampler2DMS ids;
+uniform int sample_index;
+layout(location = 0) out uint id;
+void main() {
+    id = texelFetch(ids, ivec2(gl_FragCoord.xy), sample_index).r;
+}
+)";
+
 }  // namespace tessera::peer

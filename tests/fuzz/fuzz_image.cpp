@@ -2,7 +2,7 @@
 // raster/image_io.h's read_image) and TSID visibility files (raster/visibility_io.h).
 // The first byte picks the format (file extension), the rest is the file. Accepted images
 // must give a texture whose mip chain ends at 1x1 with the documented level sizes; accepted
-// TSID files must hold exactly width*height ids.
+// TSID files must hold exactly width*height ids (times the sample count when multisampled).
 #include <unistd.h>
 
 #include <array>
@@ -82,7 +82,8 @@ std::string image_input(Bytes data) {
     try {
         if (std::string(extension) == ".tsid") {
             const VisibilityBuffer v = io::read_tsid(path);
-            if (v.width < 1 || v.height < 1 || v.triangle.size() != size_t(v.width) * size_t(v.height))
+            if (v.width < 1 || v.height < 1 || v.triangle.size() != size_t(v.width) * size_t(v.height) ||
+                v.sample_triangle.size() != (v.samples > 1 ? v.triangle.size() * size_t(v.samples) : 0))
                 broken = "TSID accepted with inconsistent size";
         } else {
             // load_texture(path, encoding), with the decoding outside the leak check.
