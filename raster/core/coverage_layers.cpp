@@ -15,7 +15,22 @@ void CoverageLayers::set_primary(size_t p, const Surface& surface) {
     if (positions_ && samples_ <= 16) primary_mask_[p] = surface.mask;
 }
 
-void CoverageLayers::add_pixel(size_t p, const Surface* list, int n) {
+void CoverageLayers::add_mixed_pixel(size_t p, const uint32_t* triangle, const float* depth, size_t step) {
+    Surface list[256];
+    int n = 0;
+    for (int s = 0; s < samples_; ++s) {
+        const uint32_t t = triangle[size_t(s) * step];
+        const float d = depth[size_t(s) * step];
+        int k = 0;
+        while (k < n && list[k].triangle != t) ++k;
+        const uint16_t bit = s < 16 ? uint16_t(1u << s) : uint16_t(0);
+        if (k == n) list[n++] = {t, d, 1, uint16_t(s), bit};
+        else {
+            list[k].depth = d < list[k].depth ? d : list[k].depth;
+            ++list[k].count;
+            list[k].mask |= bit;
+        }
+    }
     // Layer 0: the surface with the most samples, the first of them in sample order.
     int best = 0;
     for (int k = 1; k < n; ++k)
@@ -25,6 +40,56 @@ void CoverageLayers::add_pixel(size_t p, const Surface* list, int n) {
         if (k != best) others_.push_back(list[k]);
     layers_ = std::max(layers_, n);
     covered_ += n > 1 || list[0].triangle != kNoTriangle;
+}
+
+void CoverageLayers::start(const TileRect& rect, int samples, const glm::vec2* positions) {
+    rect_ = rect;
+    samples_ = samples;
+    positions_ = positions;
+    covered_ = 0;
+    const size_t area = size_t(rect.width()) * size_t(rect.height());
+    layers_ = area ? 1 : 0;
+    primary_triangle_.resize(area);
+    primary_depth_.resize(area);
+    primary_coverage_.resize(area);
+    if (positions) primary_centroid_.resize(area);
+    if (positions && samples <= 16) primary_mask_.resize(area);
+    others_.clear();
+    first_.clear();
+}
+
+void CoverageLayers::build_planes(const TileRect& rect, int samples, const glm::vec2* positions,
+                                  const uint32_t* triangles, const float* depths) {
+    start(rect, samples, positions);
+    const size_t area = size_t(rect.width()) * size_t(rect.height());
+    // Layer 0 as though every pixel showed one surface (sample 0's, at its samples' nearest
+    // depth, taken in sample order as build() takes it), in loops over whole planes that the
+    // compiler vectorises; then the pixels whose samples differ are listed one by one.
+    uint32_t* t0 = primary_triangle_.data();
+    float* d0 = primary_depth_.data();
+    std::copy_n(triangles, area, t0);
+    std::copy_n(depths, area, d0);
+    mixed_.assign(area, 0);
+    for (int s = 1; s < samples; ++s) {
+        const uint32_t* t = triangles + size_t(s) * area;
+        const float* d = depths + size_t(s) * area;
+        uint8_t* m = mixed_.data();
+        for (size_t p = 0; p < area; ++p) {
+            d0[p] = d[p] < d0[p] ? d[p] : d0[p];
+            m[p] |= uint8_t(t[p] != t0[p]);
+        }
+    }
+    std::fill_n(primary_coverage_.data(), area, uint8_t(samples));
+    if (positions) std::fill_n(primary_centroid_.data(), area, glm::vec2(0.0f));
+    if (positions && samples <= 16)
+        std::fill_n(primary_mask_.data(), area, samples >= 16 ? uint16_t(0xFFFF) : uint16_t((1u << samples) - 1u));
+    first_.resize(area + 1);
+    for (size_t p = 0; p < area; ++p) {
+        first_[p] = uint32_t(others_.size());
+        if (!mixed_[p]) covered_ += t0[p] != kNoTriangle;
+        else add_mixed_pixel(p, triangles + p, depths + p, area);
+    }
+    first_[area] = uint32_t(others_.size());
 }
 
 void CoverageLayers::build_uniform(const TileRect& rect, int samples, const glm::vec2* positions, uint32_t triangle,

@@ -40,6 +40,10 @@ public:
     template <class SampleAt>
     void build(const TileRect& rect, int samples, const glm::vec2* positions, const SampleAt& sample_at);
 
+    // build() from row-major planes, one per sample: sample s of the rect's pixel p has id
+    // triangles[s * area + p] and window depth depths[s * area + p] (area: the rect's pixels).
+    void build_planes(const TileRect& rect, int samples, const glm::vec2* positions, const uint32_t* triangles,
+                      const float* depths);
     // build() for a rect whose every sample shows `triangle` at window depth `depth`.
     void build_uniform(const TileRect& rect, int samples, const glm::vec2* positions, uint32_t triangle, float depth);
 
@@ -72,8 +76,11 @@ private:
     };
     // Layer 0 of pixel p (row-major in the rect) is written straight into the arrays layer(0)
     // hands out; the pixel's other surfaces, if any, are listed in `others_`.
+    void start(const TileRect& rect, int samples, const glm::vec2* positions);
     void set_primary(size_t p, const Surface& surface);
-    void add_pixel(size_t p, const Surface* surfaces, int n);
+    // Pixel p whose samples (ids triangle[s * step], depths depth[s * step]) show more than
+    // one surface: its surfaces listed, layer 0 the one with the most samples.
+    void add_mixed_pixel(size_t p, const uint32_t* triangle, const float* depth, size_t step);
 
     TileRect rect_;
     int samples_ = 1, layers_ = 0;
@@ -89,6 +96,7 @@ private:
     // their first samples; first_[p] .. first_[p + 1] are pixel p's.
     std::vector<Surface> others_;
     std::vector<uint32_t> first_;
+    std::vector<uint8_t> mixed_;  // build_planes: per pixel, whether its samples differ
     // Layers 1 and up as layer() hands them out.
     AlignedVector<uint32_t> triangle_;
     AlignedVector<float> depth_;
@@ -102,23 +110,10 @@ private:
 template <class SampleAt>
 void CoverageLayers::build(const TileRect& rect, int samples, const glm::vec2* positions,
                            const SampleAt& sample_at) {
-    rect_ = rect;
-    samples_ = samples;
-    positions_ = positions;
-    covered_ = 0;
-    const size_t area = size_t(rect.width()) * size_t(rect.height());
-    layers_ = area ? 1 : 0;
-    primary_triangle_.resize(area);
-    primary_depth_.resize(area);
-    primary_coverage_.resize(area);
-    if (positions) primary_centroid_.resize(area);
-    if (positions && samples <= 16) primary_mask_.resize(area);
-    others_.clear();
-    first_.clear();
+    start(rect, samples, positions);
     const uint16_t all = samples >= 16 ? uint16_t(0xFFFF) : uint16_t((1u << samples) - 1u);
     uint32_t triangle[256];
     float depth[256];
-    Surface list[256];
     size_t p = 0;
     for (int y = rect.y0; y < rect.y1; ++y)
         for (int x = rect.x0; x < rect.x1; ++x, ++p) {
@@ -135,19 +130,7 @@ void CoverageLayers::build(const TileRect& rect, int samples, const glm::vec2* p
                 covered_ += triangle[0] != kNoTriangle;
                 continue;
             }
-            int n = 0;
-            for (int s = 0; s < samples; ++s) {
-                int k = 0;
-                while (k < n && list[k].triangle != triangle[s]) ++k;
-                const uint16_t bit = s < 16 ? uint16_t(1u << s) : uint16_t(0);
-                if (k == n) list[n++] = {triangle[s], depth[s], 1, uint16_t(s), bit};
-                else {
-                    list[k].depth = depth[s] < list[k].depth ? depth[s] : list[k].depth;
-                    ++list[k].count;
-                    list[k].mask |= bit;
-                }
-            }
-            add_pixel(p, list, n);
+            add_mixed_pixel(p, triangle, depth, 1);
         }
     first_.push_back(uint32_t(others_.size()));
 }

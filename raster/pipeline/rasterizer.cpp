@@ -43,30 +43,37 @@ struct TileScratch {
 // are left cleared for the next tile. `drawn`: some triangle was rasterized into the buffers;
 // if none was, every sample still holds the cleared values, one surface for the whole tile
 // (the sky over a landscape, or a frame that only passes draw), listed without reading them.
+// Else the sample planes leave the stamp layout as row-major planes first (as flush() moves
+// a one-sample tile), which the layers then read plane by plane.
 void multisampled_tile(TileBuffers& buffers, const TileRect& rect, VisibilityBuffer& visibility, bool keep_samples,
                        bool drawn, CoverageLayers& layers) {
-    const size_t plane = buffers.plane();
-    if (drawn)
-        layers.build(rect, buffers.samples, sample_positions(buffers.samples),
-                     [&](int x, int y, int s, uint32_t& triangle, float& depth) {
-                         const size_t i = size_t(s) * plane + buffers.index(x - rect.x0, y - rect.y0);
-                         triangle = buffers.triangle[i];
-                         depth = window_depth(buffers.depth[i]);
-                     });
-    else
-        layers.build_uniform(rect, buffers.samples, sample_positions(buffers.samples), buffers.triangle[0],
-                             window_depth(buffers.depth[0]));
+    const int samples = buffers.samples;
+    const int w = rect.width(), h = rect.height();
+    const size_t area = size_t(w) * size_t(h);
+    thread_local AlignedVector<uint32_t> ids;
+    thread_local AlignedVector<float> depths;
+    const uint32_t clear_id = buffers.triangle[0];  // what an undrawn tile holds everywhere
+    const float clear_depth = window_depth(buffers.depth[0]);
+    if (drawn) {
+        ids.resize(area * size_t(samples));
+        depths.resize(area * size_t(samples));
+        buffers.flush_planes(w, h, ids.data(), depths.data());
+        layers.build_planes(rect, samples, sample_positions(samples), ids.data(), depths.data());
+    } else {
+        layers.build_uniform(rect, samples, sample_positions(samples), clear_id, clear_depth);
+    }
     if (keep_samples)
         for (int y = rect.y0; y < rect.y1; ++y)
-            for (int x = rect.x0; x < rect.x1; ++x)
-                for (int s = 0; s < buffers.samples; ++s) {
-                    const size_t i = size_t(s) * plane + buffers.index(x - rect.x0, y - rect.y0);
-                    visibility.sample_triangle[visibility.sample_index(x, y, s)] = buffers.triangle[i];
-                    visibility.sample_depth[visibility.sample_index(x, y, s)] = window_depth(buffers.depth[i]);
+            for (int x = rect.x0; x < rect.x1; ++x) {
+                const size_t p = size_t(y - rect.y0) * size_t(w) + size_t(x - rect.x0);
+                for (int s = 0; s < samples; ++s) {
+                    const size_t at = visibility.sample_index(x, y, s);
+                    visibility.sample_triangle[at] = drawn ? ids[size_t(s) * area + p] : clear_id;
+                    visibility.sample_depth[at] = drawn ? depths[size_t(s) * area + p] : clear_depth;
                 }
+            }
     const size_t origin = size_t(rect.y0) * size_t(visibility.width) + size_t(rect.x0);
     layers.copy_primary(visibility.triangle.data() + origin, visibility.depth.data() + origin, size_t(visibility.width));
-    if (drawn) buffers.clear(buffers.size, buffers.samples);
 }
 
 }  // namespace

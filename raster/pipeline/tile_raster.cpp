@@ -412,6 +412,19 @@ void TileBuffers::flush(int width, int height, uint32_t* triangle_out, float* de
     if (width < size || height < size) clear(size, samples);
 }
 
+void TileBuffers::flush_planes(int width, int height, uint32_t* triangle_out, float* depth_out) {
+    rows.resize(size_t(kStampH) * size_t(size));
+    const size_t area = size_t(width) * size_t(height);
+    for (int s = 0; s < samples; ++s) {
+        flush_rows<false>(triangle.data() + size_t(s) * plane(), size, width, height, triangle_out + size_t(s) * area,
+                          size_t(width), kNoTriangle, false, rows.data());
+        flush_rows<true>(reinterpret_cast<uint32_t*>(depth.data() + size_t(s) * plane()), size, width, height,
+                         reinterpret_cast<uint32_t*>(depth_out + size_t(s) * area), size_t(width),
+                         std::bit_cast<uint32_t>(0.0f), false, rows.data());
+    }
+    if (width < size || height < size) clear(size, samples);  // as flush()
+}
+
 uint64_t TileBuffers::covered_pixels(int width, int height) const {
     uint64_t n = 0;
     const vint none{int32_t(kNoTriangle)};

@@ -37,6 +37,9 @@ struct TileBuffers {
     // copy's cost once the frame is out of cache. Single-sampled buffers only.
     void flush(int width, int height, uint32_t* triangle_out, float* depth_out, size_t stride,
                bool stream);
+    // Multisampled buffers: every sample's plane to row-major planes of width x height values
+    // (plane s at s * width * height; depth as window depth), leaving the buffers cleared.
+    void flush_planes(int width, int height, uint32_t* triangle_out, float* depth_out);
     // How many of the tile's pixels [0, width) x [0, height) hold a triangle.
     uint64_t covered_pixels(int width, int height) const;
     // Index of tile-local pixel (x, y) in the arrays.
