@@ -1,11 +1,14 @@
 // Frame claims (raster/farm/frame_claim.h): exclusive creation, respect for live claims,
 // takeover of dead or expired ones only when allowed, and release of only one's own claim.
 #include <gtest/gtest.h>
+#include <signal.h>
+#include <sys/wait.h>
 #include <unistd.h>
 
 #include <chrono>
 #include <filesystem>
 #include <fstream>
+#include <optional>
 #include <string>
 
 #include "examples/farm/frame_claim.h"
@@ -115,6 +118,39 @@ TEST_F(ClaimTest, UnreadableClaimsAreTakenOverByTheirAge) {
     EXPECT_TRUE(fs::is_regular_file(claim_path(frame)));
     release_claim(frame);
     EXPECT_TRUE(fs::is_empty(dir)) << "the folder that stood in the claim's place is gone";
+}
+
+// A claimer killed at any instant (SIGKILL: no handler runs) leaves no claim or a whole one
+// that names it, never an empty one that would hold the frame until its age broke it. A child
+// claims and releases the frame in a loop; it is killed after a varying delay, and the claim
+// file is read: hundreds of kills land at every point of try_claim.
+TEST_F(ClaimTest, KilledClaimerLeavesNoEmptyClaim) {
+    int partial = 0, whole = 0;
+    for (int i = 0; i < 200; ++i) {
+        const pid_t child = fork();
+        ASSERT_GE(child, 0);
+        if (child == 0) {
+            for (;;) {
+                try {
+                    if (try_claim(frame, {}) != ClaimResult::held) release_claim(frame);
+                } catch (...) {
+                }
+            }
+        }
+        usleep(useconds_t(200 + (i * 37) % 700));
+        kill(child, SIGKILL);
+        int status = 0;
+        waitpid(child, &status, 0);
+        const fs::path claim = claim_path(frame);
+        if (fs::exists(claim)) {
+            const std::optional<ClaimOwner> owner = ClaimOwner::parse(read_claim());
+            if (owner && owner->pid == int64_t(child)) ++whole;
+            else ++partial;
+            fs::remove(claim);
+        }
+        for (const auto& entry : fs::directory_iterator(dir)) fs::remove(entry.path());  // its temporaries
+    }
+    EXPECT_EQ(partial, 0) << "claims left empty or naming another process (and " << whole << " whole ones)";
 }
 
 TEST_F(ClaimTest, UnwritableFolderThrows) {

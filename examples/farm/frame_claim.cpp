@@ -5,6 +5,7 @@
 #include <sys/stat.h>
 #include <unistd.h>
 
+#include <atomic>
 #include <cerrno>
 #include <cstring>
 #include <ctime>
@@ -89,20 +90,53 @@ bool is_stale(const SeenClaim& seen, const ClaimOwner& self, const ClaimPolicy& 
     throw Error("cannot claim frame with '" + p.string() + "': " + what);
 }
 
-// Creates the claim file exclusively; false when it already exists.
-bool create_claim(const fs::path& claim, const ClaimOwner& self) {
-    const int fd = open(claim.c_str(), O_CREAT | O_EXCL | O_WRONLY | O_CLOEXEC, 0644);
-    if (fd < 0) {
-        if (errno == EEXIST) return false;
-        fail(claim, std::strerror(errno));
-    }
+// Creates the claim file exclusively, with its text already in it; false when it already
+// exists. The text is written to a temporary first and linked into place (link() fails with
+// EEXIST like an exclusive create), so a claimer killed at any instant leaves either no claim
+// or a whole one naming it, never an empty claim that only its age could break. The
+// temporary is named as the atomic writer names a frame's temporaries (".NAME.tmp<pid>_..."),
+// so whatever cleans a dead writer's temporaries of the frame cleans this one too.
+bool create_claim(const fs::path& frame, const fs::path& claim, const ClaimOwner& self) {
+    std::string name = ".";  // appended piecewise: GCC 12 misreports "." + string (-Wrestrict)
+    name += frame.filename().string();
+    name += ".tmp";
+    name += std::to_string(self.pid);
+    name += "_claim";
+    static std::atomic<unsigned> counter{0};  // unique per call, as the writer's temporaries
+    name += std::to_string(counter++);
+    const fs::path temporary = frame.parent_path() / name;
+    const int fd = open(temporary.c_str(), O_CREAT | O_TRUNC | O_WRONLY | O_CLOEXEC, 0644);
+    if (fd < 0) fail(claim, std::strerror(errno));
     const std::string text = self.text();
     const ssize_t n = write(fd, text.data(), text.size());
     const int write_errno = errno;
     close(fd);
     if (n != ssize_t(text.size())) {
-        unlink(claim.c_str());
+        unlink(temporary.c_str());
         fail(claim, n < 0 ? std::strerror(write_errno) : "short write");
+    }
+    const int linked = link(temporary.c_str(), claim.c_str());
+    const int link_errno = errno;
+    unlink(temporary.c_str());
+    if (linked == 0) return true;
+    if (link_errno == EEXIST) return false;
+    // ENOENT: a process that took over this frame's stale claim removed the temporaries of
+    // the frame, ours included; the next round tries again.
+    if (link_errno == ENOENT) return false;
+    if (link_errno != EPERM && link_errno != ENOTSUP && link_errno != EXDEV) fail(claim, std::strerror(link_errno));
+    // A file system without hard links: create and write in two steps (a kill between them
+    // leaves the empty claim kUnreadableClaimAge describes).
+    const int direct = open(claim.c_str(), O_CREAT | O_EXCL | O_WRONLY | O_CLOEXEC, 0644);
+    if (direct < 0) {
+        if (errno == EEXIST) return false;
+        fail(claim, std::strerror(errno));
+    }
+    const ssize_t m = write(direct, text.data(), text.size());
+    const int direct_errno = errno;
+    close(direct);
+    if (m != ssize_t(text.size())) {
+        unlink(claim.c_str());
+        fail(claim, m < 0 ? std::strerror(direct_errno) : "short write");
     }
     return true;
 }
@@ -115,7 +149,7 @@ ClaimResult try_claim(const fs::path& frame, const ClaimPolicy& policy) {
     // A few rounds: each lost race against another process breaking the same stale claim
     // starts over with a fresh exclusive create.
     for (int round = 0; round < 4; ++round) {
-        if (create_claim(claim, self)) return round == 0 ? ClaimResult::claimed : ClaimResult::taken_over;
+        if (create_claim(frame, claim, self)) return round == 0 ? ClaimResult::claimed : ClaimResult::taken_over;
         const SeenClaim seen = look_at(claim);
         if (seen.written == 0) continue;  // released meanwhile: create again
         if (!is_stale(seen, self, policy)) return ClaimResult::held;

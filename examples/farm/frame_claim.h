@@ -40,8 +40,9 @@ struct ClaimPolicy {
     double stale_after_s = 0.0;
 };
 
-// A claim nobody can read (empty, garbage, a folder) names no owner: its writer died between
-// creating and writing it, a few microseconds, or it is not a claim. It is judged by the age
+// A claim nobody can read (empty, garbage, a folder) names no owner: it is not a claim, or,
+// on a file system without hard links, its writer died between creating and writing it (a
+// claim is otherwise linked into place whole: try_claim). It is judged by the age
 // of the file alone: stale when older than stale_after_s, or, with no such age given, than
 // this (so that a farm without --claim-timeout does not wait for it for ever).
 inline constexpr double kUnreadableClaimAge = 60.0;

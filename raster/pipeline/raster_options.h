@@ -4,9 +4,12 @@
 #pragma once
 #include <glm/glm.hpp>
 
+#include <cstddef>
 #include <cstdint>
+#include <functional>
 #include <span>
 
+#include "raster/core/tile.h"
 #include "raster/pipeline/triangle_setup.h"
 
 namespace tessera::pipeline {
@@ -36,6 +39,11 @@ struct RasterOptions {
     // Multisampled: also keep every sample in VisibilityBuffer::sample_triangle/sample_depth
     // (tests, --out-id); costs 8 bytes per sample of frame memory traffic.
     bool keep_samples = false;
+    // Multisampled: called once per tile with its resolved colour (the tile's rect, its first
+    // pixel, the row stride in pixels) while it is still in cache, as a one-sample pass sees
+    // its colour tile; render() then needs no colour buffer. Called concurrently for
+    // different tiles.
+    std::function<void(const TileRect&, const glm::vec4*, size_t)> resolved_tile;
 };
 
 // Counts and per-stage wall times of one render (times in milliseconds).

@@ -227,6 +227,7 @@ void Rasterizer::render(const Mesh& mesh, const glm::mat4& view_projection, cons
                 for (const TilePass& pass : passes) pass(context);
                 scratch.layers.accumulate(j, scratch.color.data(), size_t(grid.size));
             }
+            if (options.resolved_tile) options.resolved_tile(rect, scratch.color.data(), size_t(grid.size));
             if (color)
                 for (int y = 0; y < h; ++y)
                     std::memcpy(color->data() + size_t(rect.y0 + y) * viewport.width + rect.x0,

@@ -181,7 +181,7 @@ struct FrameRenderer::Impl {
     // Encodes rows [rect.y0, rect.y1) x [rect.x0, rect.x1) of a tile's colours (`colour` at
     // (rect.x0, rect.y0), rows `stride` apart) into `rgba8`.
     void encode_tile(const TileRect& rect, const glm::vec4* colour, size_t stride, Rgba8Target& rgba8) const;
-    // render_srgb8's float frame where tiles need one (ray casting, multisampled rasters).
+    // render_srgb8's float frame where tiles need one (ray casting).
     std::vector<glm::vec4> float_frame;
     // The tile passes of one tile: shading, shadows, transparency, compute passes. `context`:
     // the rasterizer's, whose bins hold the transparent triangles (null under ray casting).
@@ -611,25 +611,25 @@ void FrameRenderer::Impl::render_region(const FrameState& frame, const Region& r
         pipeline::RasterOptions options;
         options.transparent = frame.transparent;
         options.samples = samples;
-        // 8-bit output, one sample: each tile is encoded from the rasterizer's colour tile
-        // (its clear colour where the passes did not run), and no float frame is written.
-        const bool encode_tiles = rgba8 && samples == 1;
+        // 8-bit output: each tile is encoded from the rasterizer's colour tile (its clear
+        // colour where the passes did not run; multisampled, once its layers are resolved), and
+        // no float frame is written.
+        const bool encode_tiles = rgba8 != nullptr;
         const pipeline::TilePass pass = [&](const pipeline::TileContext& c) {
             if (in_rows(c.rect)) {
                 const TimedTile timed(clock);
                 run_tile_passes(frame, passes, visibility, c, &c, shadowed);
             }
-            if (encode_tiles) encode_tile(c.rect, c.colour, c.colour_stride, *rgba8);
+            if (encode_tiles && samples == 1) encode_tile(c.rect, c.colour, c.colour_stride, *rgba8);
         };
+        if (encode_tiles && samples > 1)
+            options.resolved_tile = [&](const TileRect& rect, const glm::vec4* resolved, size_t stride) {
+                encode_tile(rect, resolved, stride, *rgba8);
+            };
         pipeline::RasterStats raster;
         if (encode_tiles) options.tile_color = true;
         rasterizer.render(frame.baked.mesh, region.camera.view_projection(), pipeline::Viewport(w, h), options,
                           visibility, {&pass, 1}, encode_tiles ? nullptr : &colour, &raster);
-        if (rgba8 && !encode_tiles)  // multisampled: the passes ran per layer; encode the resolved frame
-            tbb::parallel_for(tbb::blocked_range<int>(0, h, 16), [&](const tbb::blocked_range<int>& rows) {
-                encode_tile(TileRect{0, rows.begin(), w, rows.end()}, colour.data() + size_t(rows.begin()) * size_t(w),
-                            size_t(w), *rgba8);
-            });
         stats.raster += raster;
         stats.tiles_ms += raster.passes_ms;
         stats.visibility_ms += ms_since(t0) - raster.passes_ms;

@@ -347,12 +347,19 @@ void FrameShading::shade_tile_surfaces(const Tile& tile) const {
             size_t material = material_count;
             bool one_material = true;
             uint32_t previous = kNoTriangle;
-            if (!tile.coverage && n == kLanes && material_limit > 0) {
-                // A whole group without coverage: the same decisions in lanes (covered ids, their
-                // materials by a gather; one material when every covered lane has the first
-                // covered lane's), instead of a branch per pixel.
+            if (n == kLanes && material_limit > 0) {
+                // A whole group: the same decisions in lanes (covered ids, their materials by a
+                // gather; one material when every covered lane has the first covered lane's),
+                // instead of a branch per pixel. A layer's pixels it does not hold
+                // (Tile::coverage 0) count as uncovered.
                 alignas(64) int32_t ids[kLanes], mats[kLanes];
-                const simd::vint id = simd::vint::load_unaligned(reinterpret_cast<const int32_t*>(&tile.triangle_at(x0, y)));
+                const int32_t* row = reinterpret_cast<const int32_t*>(&tile.triangle_at(x0, y));
+                if (tile.coverage) {
+                    const uint8_t* held = &tile.coverage[tile.offset(x0, y)];
+                    for (int i = 0; i < kLanes; ++i) ids[i] = held[i] ? row[i] : int32_t(kNoTriangle);
+                    row = ids;
+                }
+                const simd::vint id = simd::vint::load_unaligned(row);
                 const simd::vmask on = simd::andnot(id == simd::vint(int32_t(kNoTriangle)), simd::vmask(true));
                 covered = simd::bits(on);
                 if (covered == 0) continue;
