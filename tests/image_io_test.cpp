@@ -4,10 +4,15 @@
 
 #include <cstdint>
 #include <filesystem>
+#include <fstream>
+#include <iterator>
+#include <optional>
+#include <string>
 #include <vector>
 
 #include "raster/core/color_space.h"
 #include "raster/core/error.h"
+#include "raster/io/png_chunks.h"
 
 namespace fs = std::filesystem;
 using namespace tessera;
@@ -38,6 +43,47 @@ TEST(ImageIO, PngRoundTripIsExact) {
     ASSERT_EQ(back.channels, 3);
     for (size_t i = 0; i < pixels.size(); ++i)
         EXPECT_EQ(int(back.pixels[i] * 255.0f + 0.5f), int(pixels[i])) << "value " << i;
+}
+
+// A chunk that declares more bytes than its file holds is refused, naming the chunk, before
+// the decoder allocates what it declares (libpng allocated 2 GB for such a tEXt chunk), from a
+// file and from memory; the intact file still reads.
+TEST(ImageIO, PngChunkLongerThanTheFileIsRefusedFirst) {
+    const int w = 4, h = 3;
+    std::vector<uint8_t> pixels(w * h * 3, 100);
+    const fs::path path = scratch("chunks.png");
+    io::write_image(path, {w, h, 3, io::PixelType::u8, pixels.data()});
+    std::vector<uint8_t> bytes;
+    {
+        std::ifstream in(path, std::ios::binary);
+        bytes.assign(std::istreambuf_iterator<char>(in), {});
+    }
+    ASSERT_GT(bytes.size(), 33u);
+    EXPECT_FALSE(io::png_chunk_problem(bytes));
+    EXPECT_NO_THROW(io::read_image(path));
+    // IHDR's length (bytes 8-11) set to 0x7A66696C, as the fuzzer's file had for its tEXt.
+    std::vector<uint8_t> damaged = bytes;
+    damaged[8] = 0x7A, damaged[9] = 0x66, damaged[10] = 0x69, damaged[11] = 0x6C;
+    const std::optional<std::string> problem = io::png_chunk_problem(damaged);
+    ASSERT_TRUE(problem);
+    EXPECT_NE(problem->find("'IHDR' at byte 8 declares 2053532012 bytes"), std::string::npos) << *problem;
+    {
+        std::ofstream out(path, std::ios::binary | std::ios::trunc);
+        out.write(reinterpret_cast<const char*>(damaged.data()), std::streamsize(damaged.size()));
+    }
+    try {
+        io::read_image(path);
+        FAIL() << "a damaged PNG was read";
+    } catch (const Error& e) {
+        EXPECT_NE(std::string(e.what()).find("declares 2053532012 bytes"), std::string::npos) << e.what();
+    }
+    EXPECT_THROW(io::read_image_memory(damaged, "embedded.png", "png"), Error);
+    // Over 2^31 - 1, the largest length a chunk may declare.
+    damaged[8] = 0x80;
+    EXPECT_NE(io::png_chunk_problem(damaged)->find("more than a PNG chunk may hold"), std::string::npos);
+    // Not a PNG: nothing to say.
+    damaged[1] = 'Q';
+    EXPECT_FALSE(io::png_chunk_problem(damaged));
 }
 
 TEST(ImageIO, ExrKeepsFloats) {

@@ -90,6 +90,24 @@ bool is_stale(const SeenClaim& seen, const ClaimOwner& self, const ClaimPolicy& 
     throw Error("cannot claim frame with '" + p.string() + "': " + what);
 }
 
+// Creates `path` with `flags` and writes `text` into it; false when `flags` has O_EXCL and
+// the file exists. A failed write removes the file again; other failures throw, naming `claim`.
+bool write_new_file(const fs::path& path, int flags, const std::string& text, const fs::path& claim) {
+    const int fd = open(path.c_str(), flags | O_CREAT | O_WRONLY | O_CLOEXEC, 0644);
+    if (fd < 0) {
+        if (errno == EEXIST && (flags & O_EXCL)) return false;
+        fail(claim, std::strerror(errno));
+    }
+    const ssize_t n = write(fd, text.data(), text.size());
+    const int write_errno = errno;
+    close(fd);
+    if (n != ssize_t(text.size())) {
+        unlink(path.c_str());
+        fail(claim, n < 0 ? std::strerror(write_errno) : "short write");
+    }
+    return true;
+}
+
 // Creates the claim file exclusively, with its text already in it; false when it already
 // exists. The text is written to a temporary first and linked into place (link() fails with
 // EEXIST like an exclusive create), so a claimer killed at any instant leaves either no claim
@@ -105,16 +123,8 @@ bool create_claim(const fs::path& frame, const fs::path& claim, const ClaimOwner
     static std::atomic<unsigned> counter{0};  // unique per call, as the writer's temporaries
     name += std::to_string(counter++);
     const fs::path temporary = frame.parent_path() / name;
-    const int fd = open(temporary.c_str(), O_CREAT | O_TRUNC | O_WRONLY | O_CLOEXEC, 0644);
-    if (fd < 0) fail(claim, std::strerror(errno));
     const std::string text = self.text();
-    const ssize_t n = write(fd, text.data(), text.size());
-    const int write_errno = errno;
-    close(fd);
-    if (n != ssize_t(text.size())) {
-        unlink(temporary.c_str());
-        fail(claim, n < 0 ? std::strerror(write_errno) : "short write");
-    }
+    write_new_file(temporary, O_TRUNC, text, claim);
     const int linked = link(temporary.c_str(), claim.c_str());
     const int link_errno = errno;
     unlink(temporary.c_str());
@@ -126,19 +136,7 @@ bool create_claim(const fs::path& frame, const fs::path& claim, const ClaimOwner
     if (link_errno != EPERM && link_errno != ENOTSUP && link_errno != EXDEV) fail(claim, std::strerror(link_errno));
     // A file system without hard links: create and write in two steps (a kill between them
     // leaves the empty claim kUnreadableClaimAge describes).
-    const int direct = open(claim.c_str(), O_CREAT | O_EXCL | O_WRONLY | O_CLOEXEC, 0644);
-    if (direct < 0) {
-        if (errno == EEXIST) return false;
-        fail(claim, std::strerror(errno));
-    }
-    const ssize_t m = write(direct, text.data(), text.size());
-    const int direct_errno = errno;
-    close(direct);
-    if (m != ssize_t(text.size())) {
-        unlink(claim.c_str());
-        fail(claim, m < 0 ? std::strerror(direct_errno) : "short write");
-    }
-    return true;
+    return write_new_file(claim, O_EXCL, text, claim);
 }
 
 }  // namespace

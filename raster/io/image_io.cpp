@@ -1,5 +1,6 @@
 #include "raster/io/image_io.h"
 
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -9,6 +10,7 @@
 #include "raster/core/input_file.h"
 #include "raster/io/date_stamp.h"
 #include "raster/io/image_codec.h"
+#include "raster/io/png_chunks.h"
 
 namespace tessera::io {
 namespace fs = std::filesystem;
@@ -36,12 +38,14 @@ void write_image(const fs::path& path, const ImageView& image, const std::string
 
 FloatImage read_image(const fs::path& path) {
     check_input_file(path);  // "no such file", or a device, FIFO or directory refused at once
+    if (const std::optional<std::string> problem = png_chunk_problem(path)) throw Error(path.string() + ": " + *problem);
     FloatImage image;
     check(image_codec().decode_file(path.string(), image));
     return image;
 }
 
 FloatImage read_image_memory(std::span<const uint8_t> bytes, const std::string& name, const std::string& format) {
+    if (const std::optional<std::string> problem = png_chunk_problem(bytes)) throw Error(name + ": " + *problem);
     FloatImage image;
     check(image_codec().decode_memory(bytes, name, format, image));
     return image;

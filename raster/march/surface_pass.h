@@ -124,6 +124,26 @@ private:
         return s;
     }
 
+    // The normals and shading of the points (px, py, pz) of the lanes in `won`, seen along the
+    // packet's directions, into r, g, b. Every lane shades a winning lane's point (the others'
+    // points may be at infinity), so the lanes that are kept see exactly their own point.
+    template <class Field>
+    void shade_won_lanes(const Field& field, const RayPacket& packet, uint32_t won, float* px, float* py,
+                         float* pz, float* r, float* g, float* b) const {
+        using simd::vfloat;
+        using V = simd::V3<vfloat>;
+        const int lead = std::countr_zero(won);
+        for (int i = 0; i < kMarchLanes; ++i)
+            if (!(won >> i & 1u)) px[i] = px[lead], py[i] = py[lead], pz[i] = pz[lead];
+        const V d{vfloat::load(packet.dx), vfloat::load(packet.dy), vfloat::load(packet.dz)};
+        const V at{vfloat::load(px), vfloat::load(py), vfloat::load(pz)};
+        const V n = surface_normals(field, px, py, pz, look_.normals);
+        const V c = shade_surface<vfloat>(look_.material, look_.lights, background_, at, d, n);
+        c.x.store(r);
+        c.y.store(g);
+        c.z.store(b);
+    }
+
     // Records the centre result of tile pixel (x, y) before the pass writes it.
     static void record_centre(const Tile& target, Silhouettes* edges, int x, int y, float t, bool won) {
         if (!edges) return;
@@ -207,18 +227,8 @@ private:
             }
             return;
         }
-        // As run_packet: every lane shades a winning lane's point.
-        const int lead = std::countr_zero(won);
-        for (int i = 0; i < kMarchLanes; ++i)
-            if (!(i < count && (won >> i & 1u))) px[i] = px[lead], py[i] = py[lead], pz[i] = pz[lead];
-        const V d{vfloat::load(packet.dx), vfloat::load(packet.dy), vfloat::load(packet.dz)};
-        const V at{vfloat::load(px), vfloat::load(py), vfloat::load(pz)};
-        const V n = surface_normals(field, px, py, pz, look_.normals);
-        const V c = shade_surface<vfloat>(look_.material, look_.lights, background_, at, d, n);
         alignas(64) float r[kMarchLanes], g[kMarchLanes], b[kMarchLanes];
-        c.x.store(r);
-        c.y.store(g);
-        c.z.store(b);
+        shade_won_lanes(field, packet, won, px, py, pz, r, g, b);  // won has no lane past count
         for (uint32_t lanes = won; lanes; lanes &= lanes - 1) {
             const int i = std::countr_zero(lanes);
             s.colour[first + size_t(i)] = glm::vec4(r[i], g[i], b[i], 1.0f);
@@ -367,22 +377,12 @@ private:
         }
         if (!won) return;
 
-        // Every lane shades the point of a winning lane (the others' points may be at
-        // infinity), so the lanes that are kept see exactly their own point.
         alignas(64) float px[kMarchLanes], py[kMarchLanes], pz[kMarchLanes];
         p.x.store(px);
         p.y.store(py);
         p.z.store(pz);
-        const int first = std::countr_zero(won);
-        for (int i = 0; i < kMarchLanes; ++i)
-            if (!(won >> i & 1u)) px[i] = px[first], py[i] = py[first], pz[i] = pz[first];
-        const V at{vfloat::load(px), vfloat::load(py), vfloat::load(pz)};
-        const V n = surface_normals(field, px, py, pz, look_.normals);
-        const V c = shade_surface<vfloat>(look_.material, look_.lights, background_, at, d, n);
         alignas(64) float r[kMarchLanes], g[kMarchLanes], b[kMarchLanes];
-        c.x.store(r);
-        c.y.store(g);
-        c.z.store(b);
+        shade_won_lanes(field, packet, won, px, py, pz, r, g, b);
         for (uint32_t lanes = won; lanes; lanes &= lanes - 1) {
             const int i = std::countr_zero(lanes);
             target.colour_at(x0 + i, y) = glm::vec4(r[i], g[i], b[i], 1.0f);

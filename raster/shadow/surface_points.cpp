@@ -34,6 +34,20 @@ Plane plane_of(const Mesh& mesh, uint32_t triangle) {
     return plane;
 }
 
+// The plane of the last triangle asked for: neighbouring pixels mostly share a triangle.
+struct LastPlane {
+    uint32_t triangle = kNoTriangle;
+    Plane plane;
+
+    const Plane& of(const Mesh& mesh, uint32_t t) {
+        if (t != triangle) {
+            plane = plane_of(mesh, t);
+            triangle = t;
+        }
+        return plane;
+    }
+};
+
 // The point where the ray (origin, direction) meets `plane`, appended to `out` for `pixel`
 // with the plane's unit normal turned towards the ray's origin; false (nothing appended) where
 // the ray runs along the plane.
@@ -74,8 +88,7 @@ void gather_surface_points_reference(const Tile& tile, size_t image_width, const
     for (int y = rect.y0; y < rect.y1; ++y)
         for (int x = rect.x0; x < rect.x1; x += 16) __builtin_prefetch(&tile.triangle_at(x, y));
     constexpr int kBlock = 4;
-    uint32_t cached = kNoTriangle;  // neighbouring pixels mostly share a triangle
-    Plane plane;
+    LastPlane last;
     for (int by = rect.y0; by < rect.y1; by += kBlock)
         for (int bx = rect.x0; bx < rect.x1; bx += kBlock)
             for (int y = by; y < std::min(by + kBlock, rect.y1); ++y)
@@ -83,10 +96,7 @@ void gather_surface_points_reference(const Tile& tile, size_t image_width, const
                     const size_t pixel = size_t(y) * image_width + size_t(x);
                     const uint32_t triangle = tile.triangle_at(x, y);
                     if (triangle == kNoTriangle) continue;
-                    if (triangle != cached) {
-                        plane = plane_of(mesh, triangle);
-                        cached = triangle;
-                    }
+                    const Plane& plane = last.of(mesh, triangle);
                     if (plane.length == 0.0f) continue;
                     glm::vec3 origin, direction;
                     if (tile.centroid) {  // a point on the surface (coverage_layers.h)
@@ -104,16 +114,12 @@ void gather_surface_points_at(const Tile& tile, size_t image_width, const Mesh& 
                               std::span<const glm::vec3> lights) {
     out.start(pixels.size(), !lights.empty());
     const size_t light_count = std::min(lights.size(), size_t(8));
-    uint32_t cached = kNoTriangle;
-    Plane plane;
+    LastPlane last;
     for (const uint32_t pixel : pixels) {
         const int x = int(pixel % image_width), y = int(pixel / image_width);
         const uint32_t triangle = tile.triangle_at(x, y);
         if (triangle == kNoTriangle) continue;
-        if (triangle != cached) {
-            plane = plane_of(mesh, triangle);
-            cached = triangle;
-        }
+        const Plane& plane = last.of(mesh, triangle);
         if (plane.length == 0.0f) continue;
         glm::vec3 origin, direction;
         rays.ray(float(x) + 0.5f + at.x, float(y) + 0.5f + at.y, origin, direction);
