@@ -32,19 +32,16 @@ RayGenerator::RayGenerator(const Camera& camera, int width, int height)
     ray_dir_matrix_ = glm::mat4(glm::inverse(vp * eye_translation));
 }
 
-glm::vec2 RayGenerator::ndc(int x, int y) const {
-    return {(float(x) + 0.5f) / float(width_) * 2.0f - 1.0f,
-            1.0f - (float(y) + 0.5f) / float(height_) * 2.0f};
+glm::vec2 RayGenerator::ndc(int x, int y, glm::vec2 offset) const {
+    // + offset after + 0.5: exact for offset 0, so pixel centres keep their values.
+    return {(float(x) + 0.5f + offset.x) / float(width_) * 2.0f - 1.0f,
+            1.0f - (float(y) + 0.5f + offset.y) / float(height_) * 2.0f};
 }
 
-glm::vec3 RayGenerator::direction(int x, int y) const {
-    const glm::vec2 n = ndc(x, y);
-    return glm::normalize(glm::vec3(ray_dir_matrix_ * glm::vec4(n.x, n.y, 1.0f, 1.0f)));
-}
+glm::vec3 RayGenerator::direction(int x, int y) const { return direction(x, y, glm::vec2(0.0f)); }
 
 glm::vec3 RayGenerator::direction(int x, int y, glm::vec2 offset) const {
-    const glm::vec2 n{(float(x) + 0.5f + offset.x) / float(width_) * 2.0f - 1.0f,
-                      1.0f - (float(y) + 0.5f + offset.y) / float(height_) * 2.0f};
+    const glm::vec2 n = ndc(x, y, offset);
     return glm::normalize(glm::vec3(ray_dir_matrix_ * glm::vec4(n.x, n.y, 1.0f, 1.0f)));
 }
 

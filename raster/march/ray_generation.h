@@ -70,7 +70,8 @@ public:
     int height() const { return height_; }
 
 private:
-    glm::vec2 ndc(int x, int y) const;
+    // NDC of the point `offset` pixels from the centre of pixel (x, y).
+    glm::vec2 ndc(int x, int y, glm::vec2 offset = glm::vec2(0.0f)) const;
     simd::vfloat ndc_x(int x0) const;
 
     glm::mat4 ray_dir_matrix_;   // (E V P)^-1: NDC (x, y, 1, 1) -> eye-relative direction
