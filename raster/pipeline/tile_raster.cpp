@@ -496,4 +496,61 @@ size_t rasterize_tested(const TriangleSetup& t, const TileRect& tile, const floa
     return n;
 }
 
+size_t rasterize_tested_samples(const TriangleSetup& t, const Tile& tile, Fragment* out) {
+    const int n = tile.sample_count;
+    const SampleLanes samples(t, sample_pattern(n));
+    const TileRect& rect = tile.rect;
+    // A stamp's samples come one after another (traverse_sample_stamps): each lane's mask
+    // and nearest passing depth are gathered over them and handed out after the last.
+    alignas(64) float z_lanes[kLanes];
+    uint16_t lane_mask[kLanes];
+    float lane_depth[kLanes];
+    size_t count = 0;
+    const int tile_size = 1 << 8;  // any stamp-aligned width works: indices are unused here
+    traverse<true>(t, rect, tile_size, &samples, [&](size_t, int sx, int sy, int s, vmask covered, vfloat z) {
+        if (s == 0) std::fill_n(lane_mask, kLanes, uint16_t(0));
+        (z + vfloat(1.0f)).store(z_lanes);  // window_depth(), as the sample depths hold
+        for (uint32_t bits = simd::bits(covered); bits; bits &= bits - 1) {
+            const int lane = std::countr_zero(bits);
+            const int x = sx + lane % kStampW, y = sy + lane / kStampW;
+            if (x >= rect.x1 || y >= rect.y1) continue;
+            if (!((tile.sample_mask[tile.offset(x, y)] >> s) & 1)) continue;  // another layer's sample
+            if (!(z_lanes[lane] < tile.depth_at_sample(x, y, s))) continue;
+            lane_depth[lane] = lane_mask[lane] == 0 || z_lanes[lane] < lane_depth[lane] ? z_lanes[lane] : lane_depth[lane];
+            lane_mask[lane] = uint16_t(lane_mask[lane] | (1u << s));
+        }
+        if (s != n - 1) return;
+        for (int lane = 0; lane < kLanes; ++lane)
+            if (lane_mask[lane])
+                out[count++] = {uint16_t(sx + lane % kStampW), uint16_t(sy + lane / kStampW), lane_depth[lane],
+                                lane_mask[lane]};
+    });
+    return count;
+}
+
+size_t rasterize_tested_samples_reference(const TriangleSetup& t, const Tile& tile, Fragment* out) {
+    const std::span<const SampleOffset> pattern = sample_pattern(tile.sample_count);
+    const TileRect& rect = tile.rect;
+    size_t count = 0;
+    const int x0 = std::max<int>(t.minx, rect.x0), x1 = std::min<int>(t.maxx, rect.x1 - 1);
+    const int y0 = std::max<int>(t.miny, rect.y0), y1 = std::min<int>(t.maxy, rect.y1 - 1);
+    for (int y = y0; y <= y1; ++y)
+        for (int x = x0; x <= x1; ++x) {
+            Fragment f{uint16_t(x), uint16_t(y), 0.0f, 0};
+            for (int s = 0; s < tile.sample_count; ++s) {
+                if (!((tile.sample_mask[tile.offset(x, y)] >> s) & 1)) continue;
+                bool inside = true;
+                for (int i = 0; i < 3; ++i)
+                    inside = inside && edge_at(t, i, x, y) + sample_offset(t, i, pattern[s].x, pattern[s].y) >= 0;
+                if (!inside) continue;
+                const float z = window_depth(depth_offset_at_sample(t, x, y, pattern[s].x, pattern[s].y));
+                if (!(z < tile.depth_at_sample(x, y, s))) continue;
+                f.depth = f.mask == 0 || z < f.depth ? z : f.depth;
+                f.mask = uint16_t(f.mask | (1u << s));
+            }
+            if (f.mask) out[count++] = f;
+        }
+    return count;
+}
+
 }  // namespace tessera::pipeline
