@@ -500,30 +500,52 @@ size_t rasterize_tested_samples(const TriangleSetup& t, const Tile& tile, Fragme
     const int n = tile.sample_count;
     const SampleLanes samples(t, sample_pattern(n));
     const TileRect& rect = tile.rect;
-    // A stamp's samples come one after another (traverse_sample_stamps): each lane's mask
-    // and nearest passing depth are gathered over them and handed out after the last.
-    alignas(64) float z_lanes[kLanes];
-    uint16_t lane_mask[kLanes];
-    float lane_depth[kLanes];
+    // Where sample s of a lane's pixel has its depth: the tile's sample depths, or its one
+    // depth per pixel for every sample.
+    const bool own = tile.sample_depth != nullptr;
+    const float* depth = own ? tile.sample_depth : tile.depth;
+    const vint row(int32_t(own ? tile.sample_depth_row : tile.stride));
+    const vint pixel_step(int32_t(own ? tile.sample_depth_pixel_step : 1));
+    const size_t sample_step = own ? tile.sample_depth_sample_step : 0;
+    // A stamp's samples come one after another (traverse_sample_stamps): per lane, the
+    // pixel's depth index and surface samples are read at the first, the passing samples and
+    // their nearest depth gathered over all, and the fragments handed out after the last.
+    vint index(0), surface(0), passed(0);
+    vfloat nearest(0.0f);
+    alignas(64) int32_t lanes[kLanes];
+    alignas(64) float depths[kLanes];
     size_t count = 0;
     const int tile_size = 1 << 8;  // any stamp-aligned width works: indices are unused here
     traverse<true>(t, rect, tile_size, &samples, [&](size_t, int sx, int sy, int s, vmask covered, vfloat z) {
-        if (s == 0) std::fill_n(lane_mask, kLanes, uint16_t(0));
-        (z + vfloat(1.0f)).store(z_lanes);  // window_depth(), as the sample depths hold
-        for (uint32_t bits = simd::bits(covered); bits; bits &= bits - 1) {
-            const int lane = std::countr_zero(bits);
-            const int x = sx + lane % kStampW, y = sy + lane / kStampW;
-            if (x >= rect.x1 || y >= rect.y1) continue;
-            if (!((tile.sample_mask[tile.offset(x, y)] >> s) & 1)) continue;  // another layer's sample
-            if (!(z_lanes[lane] < tile.depth_at_sample(x, y, s))) continue;
-            lane_depth[lane] = lane_mask[lane] == 0 || z_lanes[lane] < lane_depth[lane] ? z_lanes[lane] : lane_depth[lane];
-            lane_mask[lane] = uint16_t(lane_mask[lane] | (1u << s));
+        if (s == 0) {
+            const vint x = vint(sx) + simd::stamp_x(), y = vint(sy) + simd::stamp_y();
+            const vmask inside = (x < vint(rect.x1)) & (y < vint(rect.y1)) & (x >= vint(rect.x0)) & (y >= vint(rect.y0));
+            index = simd::select(inside, (y - vint(rect.y0)) * row + (x - vint(rect.x0)) * pixel_step, vint(0));
+            for (int lane = 0; lane < kLanes; ++lane) {
+                const int px = sx + lane % kStampW, py = sy + lane / kStampW;
+                const bool in = px >= rect.x0 && py >= rect.y0 && px < rect.x1 && py < rect.y1;
+                lanes[lane] = in ? int32_t(tile.sample_mask[tile.offset(px, py)]) : 0;
+            }
+            surface = vint::load(lanes);
+            passed = vint(0);
+            nearest = vfloat(2.0f);  // beyond any window depth
         }
+        const vint bit(int32_t(1) << s);
+        const vfloat z_window = z + vfloat(1.0f);  // window_depth(), as the sample depths hold
+        const vmask pass = andnot((surface & bit) == vint(0), covered) &
+                           (z_window < simd::gather(depth + size_t(s) * sample_step, index));
+        passed = passed | simd::select(pass, bit, vint(0));
+        nearest = simd::select(pass, simd::min(nearest, z_window), nearest);
         if (s != n - 1) return;
-        for (int lane = 0; lane < kLanes; ++lane)
-            if (lane_mask[lane])
-                out[count++] = {uint16_t(sx + lane % kStampW), uint16_t(sy + lane / kStampW), lane_depth[lane],
-                                lane_mask[lane]};
+        const uint32_t any = simd::bits(andnot(passed == vint(0), vmask(true)));
+        if (!any) return;
+        passed.store(lanes);
+        nearest.store(depths);
+        for (uint32_t bits = any; bits; bits &= bits - 1) {
+            const int lane = std::countr_zero(bits);
+            out[count++] = {uint16_t(sx + lane % kStampW), uint16_t(sy + lane / kStampW), depths[lane],
+                            uint16_t(lanes[lane])};
+        }
     });
     return count;
 }

@@ -74,6 +74,7 @@ bool LayerSplit::split(const Tile& layer, std::vector<shade::DepthFragment>& mas
     const int n = layer.sample_count;
     const glm::vec2* positions = layer.sample_offsets;
     for (auto& e : entries_) e.clear();
+    entry_blended_.clear();
     size_t extras = 0;
     for (size_t k = 0; k < n_pixels; ++k) {
         const Pixel& p = pixels_[k];
@@ -85,7 +86,7 @@ bool LayerSplit::split(const Tile& layer, std::vector<shade::DepthFragment>& mas
         // covering it (its coverage mask says it is in front of the surface), then the blended
         // fragments covering it in front of that; samples that show the same form a group.
         groups_.clear();
-        std::vector<uint32_t> shown;
+        group_blended_.clear();
         for (int s = 0; s < n; ++s) {
             if (!((samples >> s) & 1)) continue;
             int32_t winner = -1;
@@ -93,12 +94,21 @@ bool LayerSplit::split(const Tile& layer, std::vector<shade::DepthFragment>& mas
             for (const uint32_t i : m)
                 if ((all_masked[i].mask >> s) & 1 && (winner < 0 || all_masked[i].depth < nearest))
                     winner = int32_t(i), nearest = all_masked[i].depth;
-            shown.clear();
+            shown_.clear();
             for (const uint32_t j : b)
-                if ((all_blended[j].mask >> s) & 1 && (winner < 0 || all_blended[j].depth < nearest)) shown.push_back(j);
+                if ((all_blended[j].mask >> s) & 1 && (winner < 0 || all_blended[j].depth < nearest)) shown_.push_back(j);
+            const auto same = [&](const Group& group) {
+                return group.winner == winner &&
+                       std::equal(group_blended_.begin() + group.blended_begin, group_blended_.begin() + group.blended_end,
+                                  shown_.begin(), shown_.end());
+            };
             size_t g = 0;
-            while (g < groups_.size() && !(groups_[g].winner == winner && groups_[g].blended == shown)) ++g;
-            if (g == groups_.size()) groups_.push_back({winner, 0, 0, s, shown});
+            while (g < groups_.size() && !same(groups_[g])) ++g;
+            if (g == groups_.size()) {
+                const uint32_t begin = uint32_t(group_blended_.size());
+                group_blended_.insert(group_blended_.end(), shown_.begin(), shown_.end());
+                groups_.push_back({winner, 0, 0, s, begin, uint32_t(group_blended_.size())});
+            }
             groups_[g].mask = uint16_t(groups_[g].mask | (1u << s));
             ++groups_[g].count;
         }
@@ -124,12 +134,17 @@ bool LayerSplit::split(const Tile& layer, std::vector<shade::DepthFragment>& mas
                 coverage_[off] = uint8_t(group.count);
                 mask_[off] = group.mask;
                 if (layer.centroid) centroid_[off] = centroid;
-                for (const uint32_t j : group.blended) main_blended_.push_back({p.x, p.y, all_blended[j].triangle});
+                for (uint32_t i = group.blended_begin; i < group.blended_end; ++i)
+                    main_blended_.push_back({p.x, p.y, all_blended[group_blended_[i]].triangle});
                 continue;
             }
             extras = std::max(extras, g);
             if (entries_.size() < g) entries_.resize(g);
-            entries_[g - 1].push_back({p.x, p.y, triangle, depth, colour, group.count, centroid, group.mask, group.blended});
+            const uint32_t begin = uint32_t(entry_blended_.size());
+            entry_blended_.insert(entry_blended_.end(), group_blended_.begin() + group.blended_begin,
+                                  group_blended_.begin() + group.blended_end);
+            entries_[g - 1].push_back({p.x, p.y, triangle, depth, colour, group.count, centroid, group.mask, begin,
+                                       uint32_t(entry_blended_.size())});
         }
     }
 
@@ -162,7 +177,8 @@ bool LayerSplit::split(const Tile& layer, std::vector<shade::DepthFragment>& mas
             x.coverage[i] = uint8_t(e.count);
             x.centroid[i] = e.centroid;
             x.mask[i] = e.mask;
-            for (const uint32_t j : e.blended) x.blended.push_back({e.x, e.y, all_blended[j].triangle});
+            for (uint32_t j = e.blended_begin; j < e.blended_end; ++j)
+                x.blended.push_back({e.x, e.y, all_blended[entry_blended_[j]].triangle});
         }
         Tile& t = x.tile;
         t = Tile{};

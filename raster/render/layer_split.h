@@ -63,8 +63,8 @@ private:
         int32_t winner;  // index into the masked list, -1: the layer's surface
         uint16_t mask;
         int count;
-        int first;                      // its first sample
-        std::vector<uint32_t> blended;  // indices into the blended list
+        int first;                        // its first sample
+        uint32_t blended_begin, blended_end;  // its blended fragments: group_blended_'s range
     };
     struct Extra {
         Tile tile;
@@ -85,7 +85,7 @@ private:
         int count;
         glm::vec2 centroid;
         uint16_t mask;
-        std::vector<uint32_t> blended;
+        uint32_t blended_begin, blended_end;  // its blended fragments: entry_blended_'s range
     };
     // A split pixel and how many samples the layer gives it.
     struct Pixel {
@@ -104,6 +104,7 @@ private:
     std::vector<int32_t> slot_;
     std::vector<std::vector<uint32_t>> masked_of_, blended_of_;
     std::vector<Group> groups_;
+    std::vector<uint32_t> shown_, group_blended_, entry_blended_;
     std::vector<std::vector<Entry>> entries_;
 };
 
