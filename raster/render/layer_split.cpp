@@ -18,7 +18,7 @@ bool LayerSplit::split(const Tile& layer, std::vector<shade::DepthFragment>& mas
     const size_t w = size_t(r.width()), area = w * size_t(r.height());
     const auto local = [&](int x, int y) { return size_t(y - r.y0) * w + size_t(x - r.x0); };
     const auto partial = [&](const shade::DepthFragment& f) {
-        return f.mask != layer.sample_mask[layer.offset(f.x, f.y)];
+        return f.mask != layer.samples_at(f.x, f.y);
     };
     // The pixels to split: some surviving alpha-tested or some blended fragment covers only
     // part of the layer's samples there.
@@ -79,7 +79,7 @@ bool LayerSplit::split(const Tile& layer, std::vector<shade::DepthFragment>& mas
     for (size_t k = 0; k < n_pixels; ++k) {
         const Pixel& p = pixels_[k];
         const size_t off = layer.offset(p.x, p.y);
-        const uint16_t samples = layer.sample_mask[off];
+        const uint16_t samples = layer.samples_at(p.x, p.y);
         const std::vector<uint32_t>& m = masked_of_[k];
         const std::vector<uint32_t>& b = blended_of_[k];
         // Per sample of the layer's surface: the nearest surviving alpha-tested fragment
