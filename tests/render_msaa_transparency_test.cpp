@@ -134,11 +134,13 @@ TEST(RenderMsaaTransparency, EdgePixelsMixByCoveredSamples) {
 }
 
 TEST(RenderMsaaTransparency, SameForAnyThreadCount) {
-    for (const bool masked : {false, true}) {
-        const Frame a = render(masked, render::RendererKind::raster, 4, 1);
-        const Frame b = render(masked, render::RendererKind::raster, 4, 2);
-        EXPECT_EQ(0, std::memcmp(a.pixels.data(), b.pixels.data(), a.pixels.size() * sizeof(glm::vec4))) << masked;
-    }
+    for (const bool masked : {false, true})
+        for (const auto kind : {render::RendererKind::raster, render::RendererKind::raytrace}) {
+            const Frame a = render(masked, kind, 4, 1);
+            const Frame b = render(masked, kind, 4, 2);
+            EXPECT_EQ(0, std::memcmp(a.pixels.data(), b.pixels.data(), a.pixels.size() * sizeof(glm::vec4)))
+                << masked << " " << int(kind);
+        }
 }
 
 }  // namespace
