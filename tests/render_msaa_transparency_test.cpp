@@ -3,7 +3,7 @@
 // (k / n) of the covered colour and (n - k) / n of the uncovered one in linear light, k the
 // samples it covers (computed here from the geometry, independently of the renderers), in
 // both renderers; pixels it covers wholly or not at all keep their one-sample colour to the
-// bit; and the frame is the same for any thread count.
+// bit; and the frame is the same for any thread count, shadows included.
 #include <gtest/gtest.h>
 #include <tbb/global_control.h>
 
@@ -57,11 +57,12 @@ render::AnimatedScene edge_scene(bool masked) {
     return render::still_scene(std::move(s));
 }
 
-Frame render(bool masked, render::RendererKind kind, int samples, int threads = 0) {
+Frame render(bool masked, render::RendererKind kind, int samples, int threads = 0,
+             render::ShadowMode shadows = render::ShadowMode::none) {
     std::unique_ptr<tbb::global_control> limit;
     if (threads > 0) limit = std::make_unique<tbb::global_control>(tbb::global_control::max_allowed_parallelism, threads);
     render::AnimatedScene scene = edge_scene(masked);
-    render::FrameRenderer frames(scene, kWidth, kHeight, kind, render::ShadowMode::none, samples);
+    render::FrameRenderer frames(scene, kWidth, kHeight, kind, shadows, samples);
     return frames.render(0.0f);
 }
 
@@ -136,8 +137,9 @@ TEST(RenderMsaaTransparency, EdgePixelsMixByCoveredSamples) {
 TEST(RenderMsaaTransparency, SameForAnyThreadCount) {
     for (const bool masked : {false, true})
         for (const auto kind : {render::RendererKind::raster, render::RendererKind::raytrace}) {
-            const Frame a = render(masked, kind, 4, 1);
-            const Frame b = render(masked, kind, 4, 2);
+            // With shadow rays: the split pixels' groups run the shadow pass too.
+            const Frame a = render(masked, kind, 4, 1, render::ShadowMode::rays);
+            const Frame b = render(masked, kind, 4, 2, render::ShadowMode::rays);
             EXPECT_EQ(0, std::memcmp(a.pixels.data(), b.pixels.data(), a.pixels.size() * sizeof(glm::vec4)))
                 << masked << " " << int(kind);
         }
