@@ -3,7 +3,8 @@
 # `tessera` binaries, e.g. the release build (-march=native: AVX-512 where the CPU has it) and
 # the portable one (x86-64-v3: AVX2), must write identical files: a mid-animation frame of
 # every example scene in every shadow mode and with both renderers, in PNG and EXR, 4-sample
-# frames of the marched and the default scenes, the raster
+# frames of the marched and the default scenes, a scene with transparent triangles at 1 and
+# 4 samples, the raster
 # command's colour, ids and depth, and the generators' images.
 #   bash tests/builds_same_bytes.sh build/bin/tessera build-portable/bin/tessera
 set -u
@@ -48,6 +49,25 @@ for name in metaballs terrain snakes; do
     for renderer in raster raytrace; do
         both "${name}_msaa_$renderer" png render --scene "$scenes/$name.json" --size 160x90 --frames 7:7 \
             --samples 4 --renderer $renderer --quiet --out "@OUT@.png"
+    done
+done
+# Transparent triangles, blended and over opaque ones, at one sample and at four (their
+# coverage and depth tests per sample in lanes, the split of edge pixels).
+cat > "$dir/glass.json" <<'JSON'
+{"camera": {"eye": [0, 2, 4], "lookat": [0, 0, 0], "fov": 45},
+ "lights": [{"direction": [0.3, 1, 0.2], "La": [0.2, 0.2, 0.2], "Le": [1, 1, 1]}],
+ "materials": {"grey": {"kd": [0.6, 0.6, 0.6]}, "red": {"kd": [0.9, 0.1, 0.1]},
+               "glass": {"kd": [0.3, 0.6, 0.9], "opacity": 0.4}, "tint": {"kd": [0.9, 0.8, 0.2], "opacity": 0.6}},
+ "objects": [
+   {"type": "box", "material": "grey", "size": [3, 0.2, 3], "transform": {"translate": [0, -1.1, 0]}},
+   {"type": "sphere", "material": "red", "radius": 0.7, "centre": [0, 0, 0]},
+   {"type": "sphere", "material": "glass", "radius": 0.5, "centre": [0.9, 0.3, 0.8]},
+   {"type": "box", "material": "tint", "size": [0.8, 1.2, 0.1], "transform": {"translate": [-0.8, -0.3, 1.0]}}]}
+JSON
+for samples in 1 4; do
+    for renderer in raster raytrace; do
+        both "glass_${samples}_$renderer" png render --scene "$dir/glass.json" --size 160x90 --frames 1:1 \
+            --samples $samples --shadows rays --renderer $renderer --quiet --out "@OUT@_####.png"
     done
 done
 "$first" testmesh --kind sphere --count 5000 --out "$dir/s.obj" --camera-out "$dir/s.cam" >/dev/null || fail "testmesh exited $?"

@@ -91,13 +91,13 @@ inline RandomTriangle random_triangle(Rng& rng, int width, int height, int exten
 // from `extents` (pixels; those beyond 1000 reach out to the guard band), ids in submission
 // order.
 inline std::vector<pipeline::TriangleSetup> random_setups(Rng& rng, const pipeline::Viewport& viewport, int count,
-                                                          std::initializer_list<int> extents) {
+                                                          std::initializer_list<int> extents, int samples = 1) {
     std::vector<pipeline::TriangleSetup> setups;
     while (int(setups.size()) < count) {
         const int extent = extents.begin()[rng.uniform(0, int64_t(extents.size()) - 1)];
         const RandomTriangle tri = random_triangle(rng, viewport.width, viewport.height, extent, extent > 1000 ? 0 : 20);
         pipeline::TriangleSetup t;
-        if (setup_triangle(tri.v[0], tri.v[1], tri.v[2], pipeline::CullMode::none, viewport, t) !=
+        if (setup_triangle(tri.v[0], tri.v[1], tri.v[2], pipeline::CullMode::none, viewport, t, samples) !=
             pipeline::SetupResult::drawn)
             continue;
         t.triangle = uint32_t(setups.size());

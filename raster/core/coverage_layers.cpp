@@ -56,6 +56,7 @@ void CoverageLayers::start(const TileRect& rect, int samples, const glm::vec2* p
     if (positions && samples <= 16) primary_mask_.resize(area);
     others_.clear();
     first_.clear();
+    sample_depth_ = nullptr;
 }
 
 void CoverageLayers::build_planes(const TileRect& rect, int samples, const glm::vec2* positions,
@@ -90,6 +91,7 @@ void CoverageLayers::build_planes(const TileRect& rect, int samples, const glm::
         else add_mixed_pixel(p, triangles + p, depths + p, area);
     }
     first_[area] = uint32_t(others_.size());
+    set_sample_depths(depths, size_t(rect.width()), 1, area);
 }
 
 void CoverageLayers::build_uniform(const TileRect& rect, int samples, const glm::vec2* positions, uint32_t triangle,
@@ -108,6 +110,7 @@ void CoverageLayers::build_uniform(const TileRect& rect, int samples, const glm:
         primary_mask_.assign(area, samples >= 16 ? uint16_t(0xFFFF) : uint16_t((1u << samples) - 1u));
     others_.clear();
     first_.assign(area + 1, 0);
+    sample_depth_ = nullptr;
 }
 
 Tile CoverageLayers::layer(int j, const glm::vec4& clear) {
@@ -161,6 +164,10 @@ Tile CoverageLayers::layer(int j, const glm::vec4& clear) {
     if (masks) {
         tile.sample_count = samples_;
         tile.sample_offsets = positions_;
+        tile.sample_depth = sample_depth_;
+        tile.sample_depth_row = sample_depth_row_;
+        tile.sample_depth_pixel_step = sample_depth_pixel_step_;
+        tile.sample_depth_sample_step = sample_depth_sample_step_;
     }
     return tile;
 }

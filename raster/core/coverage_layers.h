@@ -47,6 +47,16 @@ public:
     // build() for a rect whose every sample shows `triangle` at window depth `depth`.
     void build_uniform(const TileRect& rect, int samples, const glm::vec2* positions, uint32_t triangle, float depth);
 
+    // After build(): where the layers' Tile::sample_depth reads each sample's depth (see
+    // there: `origin` at the rect's first pixel, strides in elements). build_planes() sets it
+    // to its planes, build_uniform() to none (every sample has the one depth).
+    void set_sample_depths(const float* origin, size_t row, size_t pixel_step, size_t sample_step) {
+        sample_depth_ = origin;
+        sample_depth_row_ = row;
+        sample_depth_pixel_step_ = pixel_step;
+        sample_depth_sample_step_ = sample_step;
+    }
+
     int layers() const { return layers_; }
     int samples() const { return samples_; }
     // Pixels with at least one sample covered by a triangle.
@@ -105,6 +115,8 @@ private:
     std::vector<uint16_t> mask_;
     std::vector<glm::vec4> colour_;
     const uint8_t* layer_coverage_ = nullptr;  // the last layer()'s, for accumulate()
+    const float* sample_depth_ = nullptr;       // set_sample_depths()
+    size_t sample_depth_row_ = 0, sample_depth_pixel_step_ = 0, sample_depth_sample_step_ = 0;
 };
 
 template <class SampleAt>

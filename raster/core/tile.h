@@ -51,6 +51,12 @@ struct Tile {
     const uint16_t* sample_mask = nullptr;
     int sample_count = 1;
     const glm::vec2* sample_offsets = nullptr;
+    // With sample_mask: the window depth of each sample of the pixel as visibility found it
+    // (the opaque surface there, 1.0 where none), for passes that depth-test at the samples
+    // (transparent triangles): sample s of pixel (x, y) at sample_depth[(y - y0) * row +
+    // (x - x0) * pixel_step + s * sample_step]. Null: every sample reads depth_at(x, y).
+    const float* sample_depth = nullptr;
+    size_t sample_depth_row = 0, sample_depth_pixel_step = 0, sample_depth_sample_step = 0;
 
     int width() const { return rect.width(); }
     int height() const { return rect.height(); }
@@ -60,6 +66,14 @@ struct Tile {
     // Whether the passes may sample this tile's pixels at their sample positions.
     bool multisampled() const { return coverage && sample_mask && sample_offsets && sample_count > 1; }
     float& depth_at(int x, int y) const { return depth[offset(x, y)]; }
+    float depth_at_sample(int x, int y, int s) const {
+        if (!sample_depth) return depth_at(x, y);
+        return sample_depth[size_t(y - rect.y0) * sample_depth_row + size_t(x - rect.x0) * sample_depth_pixel_step +
+                            size_t(s) * sample_depth_sample_step];
+    }
+    // The samples of pixel (x, y) this tile's surface covers: sample_mask's where the tile
+    // is multisampled, else bit 0 (the pixel centre stands for the pixel).
+    uint16_t samples_at(int x, int y) const { return multisampled() ? sample_mask[offset(x, y)] : uint16_t(1); }
     glm::vec4& colour_at(int x, int y) const {
         return colour[size_t(y - rect.y0) * colour_stride + size_t(x - rect.x0)];
     }

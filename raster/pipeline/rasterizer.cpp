@@ -103,7 +103,8 @@ void TileContext::for_each_transparent(
     for (const ChunkBins& chunk : *work->chunks)
         for_each_setup(chunk, work->tile, *work->source, [&](const TriangleSetup& t) {
             if (!t.transparent) return;
-            const size_t n = rasterize_tested(t, rect, depth, stride, fragments.data());
+            const size_t n = multisampled() ? rasterize_tested_samples(t, *this, fragments.data())
+                                            : rasterize_tested(t, rect, depth, stride, fragments.data());
             if (n) blend(t.triangle, std::span<const Fragment>(fragments.data(), n));
         });
 }

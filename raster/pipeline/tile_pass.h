@@ -39,7 +39,9 @@ struct TileContext : Tile {
 
     // Rasterizes this tile's transparent triangles (RasterOptions::transparent) in submission
     // order, each depth-tested (LESS) against `depth` as it is now, without writing it, and
-    // calls blend(triangle id, its passing fragments) once per triangle that has any.
+    // calls blend(triangle id, its passing fragments) once per triangle that has any. On a
+    // multisampled tile, coverage and the test are per sample of the tile's surface, against
+    // the samples' own depths (rasterize_tested_samples; Fragment::mask).
     void for_each_transparent(
         const std::function<void(uint32_t triangle, std::span<const Fragment> fragments)>& blend) const;
 

@@ -496,4 +496,83 @@ size_t rasterize_tested(const TriangleSetup& t, const TileRect& tile, const floa
     return n;
 }
 
+size_t rasterize_tested_samples(const TriangleSetup& t, const Tile& tile, Fragment* out) {
+    const int n = tile.sample_count;
+    const SampleLanes samples(t, sample_pattern(n));
+    const TileRect& rect = tile.rect;
+    // Where sample s of a lane's pixel has its depth: the tile's sample depths, or its one
+    // depth per pixel for every sample.
+    const bool own = tile.sample_depth != nullptr;
+    const float* depth = own ? tile.sample_depth : tile.depth;
+    const vint row(int32_t(own ? tile.sample_depth_row : tile.stride));
+    const vint pixel_step(int32_t(own ? tile.sample_depth_pixel_step : 1));
+    const size_t sample_step = own ? tile.sample_depth_sample_step : 0;
+    // A stamp's samples come one after another (traverse_sample_stamps): per lane, the
+    // pixel's depth index and surface samples are read at the first, the passing samples and
+    // their nearest depth gathered over all, and the fragments handed out after the last.
+    vint index(0), surface(0), passed(0);
+    vfloat nearest(0.0f);
+    alignas(64) int32_t lanes[kLanes];
+    alignas(64) float depths[kLanes];
+    size_t count = 0;
+    const int tile_size = 1 << 8;  // any stamp-aligned width works: indices are unused here
+    traverse<true>(t, rect, tile_size, &samples, [&](size_t, int sx, int sy, int s, vmask covered, vfloat z) {
+        if (s == 0) {
+            const vint x = vint(sx) + simd::stamp_x(), y = vint(sy) + simd::stamp_y();
+            const vmask inside = (x < vint(rect.x1)) & (y < vint(rect.y1)) & (x >= vint(rect.x0)) & (y >= vint(rect.y0));
+            index = simd::select(inside, (y - vint(rect.y0)) * row + (x - vint(rect.x0)) * pixel_step, vint(0));
+            for (int lane = 0; lane < kLanes; ++lane) {
+                const int px = sx + lane % kStampW, py = sy + lane / kStampW;
+                const bool in = px >= rect.x0 && py >= rect.y0 && px < rect.x1 && py < rect.y1;
+                lanes[lane] = in ? int32_t(tile.sample_mask[tile.offset(px, py)]) : 0;
+            }
+            surface = vint::load(lanes);
+            passed = vint(0);
+            nearest = vfloat(2.0f);  // beyond any window depth
+        }
+        const vint bit(int32_t(1) << s);
+        const vfloat z_window = z + vfloat(1.0f);  // window_depth(), as the sample depths hold
+        const vmask pass = andnot((surface & bit) == vint(0), covered) &
+                           (z_window < simd::gather(depth + size_t(s) * sample_step, index));
+        passed = passed | simd::select(pass, bit, vint(0));
+        nearest = simd::select(pass, simd::min(nearest, z_window), nearest);
+        if (s != n - 1) return;
+        const uint32_t any = simd::bits(andnot(passed == vint(0), vmask(true)));
+        if (!any) return;
+        passed.store(lanes);
+        nearest.store(depths);
+        for (uint32_t bits = any; bits; bits &= bits - 1) {
+            const int lane = std::countr_zero(bits);
+            out[count++] = {uint16_t(sx + lane % kStampW), uint16_t(sy + lane / kStampW), depths[lane],
+                            uint16_t(lanes[lane])};
+        }
+    });
+    return count;
+}
+
+size_t rasterize_tested_samples_reference(const TriangleSetup& t, const Tile& tile, Fragment* out) {
+    const std::span<const SampleOffset> pattern = sample_pattern(tile.sample_count);
+    const TileRect& rect = tile.rect;
+    size_t count = 0;
+    const int x0 = std::max<int>(t.minx, rect.x0), x1 = std::min<int>(t.maxx, rect.x1 - 1);
+    const int y0 = std::max<int>(t.miny, rect.y0), y1 = std::min<int>(t.maxy, rect.y1 - 1);
+    for (int y = y0; y <= y1; ++y)
+        for (int x = x0; x <= x1; ++x) {
+            Fragment f{uint16_t(x), uint16_t(y), 0.0f, 0};
+            for (int s = 0; s < tile.sample_count; ++s) {
+                if (!((tile.sample_mask[tile.offset(x, y)] >> s) & 1)) continue;
+                bool inside = true;
+                for (int i = 0; i < 3; ++i)
+                    inside = inside && edge_at(t, i, x, y) + sample_offset(t, i, pattern[s].x, pattern[s].y) >= 0;
+                if (!inside) continue;
+                const float z = window_depth(depth_offset_at_sample(t, x, y, pattern[s].x, pattern[s].y));
+                if (!(z < tile.depth_at_sample(x, y, s))) continue;
+                f.depth = f.mask == 0 || z < f.depth ? z : f.depth;
+                f.mask = uint16_t(f.mask | (1u << s));
+            }
+            if (f.mask) out[count++] = f;
+        }
+    return count;
+}
+
 }  // namespace tessera::pipeline

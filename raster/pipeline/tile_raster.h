@@ -55,15 +55,28 @@ void rasterize_opaque(const TriangleSetup& t, const TileRect& tile, TileBuffers&
 // The same without triangle ids (depth-only renders: shadow maps).
 void rasterize_depth(const TriangleSetup& t, const TileRect& tile, TileBuffers& buffers);
 
-// A covered pixel centre of a triangle: frame pixel (x, y) and its window depth.
+// A covered pixel of a triangle: frame pixel (x, y), its window depth, and the samples it
+// covers and passes the depth test at. One sample: the pixel centre, its depth there, mask 1.
+// Multisampled (rasterize_tested_samples): the samples of the pixel, bit s for sample s, and
+// the nearest of their depths.
 struct Fragment {
     uint16_t x, y;
     float depth;
+    uint16_t mask = 1;
 };
 
 // Appends the fragments of `t` inside `tile` whose depth is LESS than depth[(y - y0) * stride +
 // (x - x0)] to `out` (nothing is written to depth); returns how many were appended.
 size_t rasterize_tested(const TriangleSetup& t, const TileRect& tile, const float* depth,
                         size_t stride, Fragment* out);
+// rasterize_tested at the samples of a multisampled tile (Tile::multisampled()): coverage
+// per sample with the opaque path's positions and fill rule, each covered sample of the
+// tile's surface (Tile::sample_mask) depth-tested LESS against its own depth
+// (Tile::depth_at_sample). Appends one fragment per pixel with any sample passing, in the
+// order rasterize_tested would; returns how many.
+size_t rasterize_tested_samples(const TriangleSetup& t, const Tile& tile, Fragment* out);
+// The same one pixel and one sample at a time from the setup's int64 edge functions and
+// depth plane (depth_offset_at_sample()), pixels in row order, for the test of the fast path.
+size_t rasterize_tested_samples_reference(const TriangleSetup& t, const Tile& tile, Fragment* out);
 
 }  // namespace tessera::pipeline

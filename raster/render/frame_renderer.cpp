@@ -30,6 +30,7 @@
 #include "raster/march/procedural_surfaces.h"
 #include "raster/march/surface_pass.h"
 #include "raster/output/srgb8.h"
+#include "raster/render/layer_split.h"
 #include "raster/shade/alpha_test.h"
 #include "raster/shade/frame_shading.h"
 #include "raster/shade/outline.h"
@@ -558,42 +559,62 @@ void FrameRenderer::Impl::run_tile_passes(const FrameState& frame, const RegionP
     }
     // Triangles outside the opaque pass, in front of its surface, in submission order: the
     // rasterizer replays its bins, rays collect them. Alpha-tested ones are decided first
-    // (they are opaque where they survive: shadows and blending must see them).
+    // (they are opaque where they survive: shadows and blending must see them). On a
+    // multisampled layer their coverage is per sample, and pixels they cover only in part
+    // are split by what their samples show (layer_split.h); the passes below then run on
+    // each part.
     std::vector<shade::DepthFragment> blended;
+    LayerSplit split;
+    bool is_split = false;
     if (!frame.transparent.empty()) {
         TraceScope t("transparent", "tile");
         const TimedPass timed(clock, TilePass::transparent);
         std::vector<shade::DepthFragment> masked;
         const auto add = [&](uint32_t triangle, std::span<const pipeline::Fragment> f) {
             auto& to = frame.transparent[triangle] == kAlphaTested ? masked : blended;
-            for (const pipeline::Fragment& frag : f) to.push_back({frag.x, frag.y, triangle, frag.depth});
+            for (const pipeline::Fragment& frag : f) to.push_back({frag.x, frag.y, triangle, frag.depth, frag.mask});
         };
         if (context)
             context->for_each_transparent(add);
         else
             embree::for_each_transparent_hit(*frame.rays, passes.pixel_rays, frame.transparent, tile, add);
-        if (!masked.empty()) shade::resolve_alpha_tested(passes.shading, masked, tile);
+        std::vector<glm::vec4> masked_colours;
+        if (!masked.empty()) shade::shade_alpha_tested(passes.shading, masked, masked_colours);
+        is_split = split.split(tile, masked, masked_colours, blended);
+        if (!masked.empty()) shade::apply_alpha_tested(masked, masked_colours, tile);
     }
+    // The tile, or the parts a split made of it.
+    const Tile& first = is_split ? split.main() : tile;
+    const int parts = is_split ? 1 + split.extra_tiles() : 1;
+    const auto part = [&](int k) -> const Tile& { return k == 0 ? first : split.extra(k - 1); };
     if (!passes.subset_shading.empty()) {
         const TimedPass timed(clock, TilePass::shadows);
-        shade_shadows(frame, passes, visibility, tile, shadowed);
+        for (int k = 0; k < parts; ++k) shade_shadows(frame, passes, visibility, part(k), shadowed);
     }
-    if (!blended.empty()) {
+    if (!blended.empty() || is_split) {
         // Blended over what is drawn so far, in submission order, where still in front (an
-        // alpha-tested surface may have come nearer).
+        // alpha-tested surface may have come nearer); on split pixels, as their groups decided.
         TraceScope t("blend", "tile");
         const TimedPass timed(clock, TilePass::blend);
         std::vector<shade::CoveredPixel> fragments;
         fragments.reserve(blended.size());
         for (const shade::DepthFragment& f : blended)
             if (f.depth < tile.depth_at(f.x, f.y)) fragments.push_back({f.x, f.y, f.triangle});
-        if (!fragments.empty()) shade::blend_fragments(passes.shading, fragments, tile);
+        if (is_split) {
+            const std::span<const shade::CoveredPixel> decided = split.main_blended();
+            fragments.insert(fragments.end(), decided.begin(), decided.end());
+        }
+        if (!fragments.empty()) shade::blend_fragments(passes.shading, fragments, first);
+        for (int k = 1; k < parts; ++k)
+            if (!split.extra_blended(k - 1).empty())
+                shade::blend_fragments(passes.shading, split.extra_blended(k - 1), part(k));
     }
     for (const RegionPasses::ComputePass& pass : passes.compute) {
         TraceScope t("compute pass", "tile");
         const TimedPass timed(clock, pass.kind);
-        pass.run(tile);
+        for (int k = 0; k < parts; ++k) pass.run(part(k));
     }
+    if (is_split) split.fold();
 }
 
 void FrameRenderer::Impl::render_region(const FrameState& frame, const Region& region,
@@ -658,6 +679,8 @@ void FrameRenderer::Impl::render_region(const FrameState& frame, const Region& r
                     triangle = visibility.sample_triangle[visibility.sample_index(x, y, s)];
                     depth = visibility.sample_depth[visibility.sample_index(x, y, s)];
                 });
+                l.set_sample_depths(&visibility.sample_depth[visibility.sample_index(rect.x0, rect.y0, 0)],
+                                    size_t(visibility.width) * size_t(samples), size_t(samples), 1);
                 for (int j = 0; j < l.layers(); ++j) {
                     run_tile_passes(frame, passes, visibility, l.layer(j, glm::vec4(0.0f)), nullptr, shadowed);
                     l.accumulate(j, &tile.colour_at(rect.x0, rect.y0), tile.colour_stride);

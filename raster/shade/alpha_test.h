@@ -10,21 +10,32 @@
 #pragma once
 #include <cstdint>
 #include <span>
+#include <vector>
 
 #include "raster/shade/frame_shading.h"
 
 namespace tessera::shade {
 
-// A fragment of a triangle outside the opaque pass: pixel (x, y) and its window depth.
+// A fragment of a triangle outside the opaque pass: pixel (x, y), its window depth, and on a
+// multisampled tile the samples it covers in front of the opaque surface (bit s: sample s;
+// pipeline::Fragment::mask), 1 otherwise.
 struct DepthFragment {
     int32_t x = 0;
     int32_t y = 0;
     uint32_t triangle = 0;
     float depth = 0.0f;
+    uint16_t mask = 1;
 };
 
 // Resolves the masked fragments of one tile into its visibility (triangle ids and depth) and
 // colour.
 void resolve_alpha_tested(const FrameShading& shading, std::span<const DepthFragment> fragments, const Tile& tile);
+// The two steps of resolve_alpha_tested: the fragments shaded once each at the pixel centre
+// (alpha 1 where a fragment survives its cutoff, else 0; survives() reads it), and the
+// surviving ones applied to the tile in order where nearer than what it shows.
+void shade_alpha_tested(const FrameShading& shading, std::span<const DepthFragment> fragments,
+                        std::vector<glm::vec4>& colours);
+inline bool survives(const glm::vec4& colour) { return !(colour.a < 0.5f); }
+void apply_alpha_tested(std::span<const DepthFragment> fragments, std::span<const glm::vec4> colours, const Tile& tile);
 
 }  // namespace tessera::shade
