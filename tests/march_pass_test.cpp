@@ -177,8 +177,12 @@ TEST(MarchPass, FogHidesTheFarPlane) {
         FogPass(rays, fog).run(frame.all());
         const glm::vec4 got = frame.colour[size_t(y) * W + W / 2];
         const glm::vec3 closed_form = fog.apply(glm::vec3(red), camera.eye, d, fraction * far);
-        if (fraction < 0.75f) EXPECT_NEAR(got.r, closed_form.r, 1e-5f) << fraction;
-        if (fraction > 0.999f) EXPECT_NEAR(got.g, fog.colour.g, 1e-2f) << fraction;
+        if (fraction < 0.75f) {
+            EXPECT_NEAR(got.r, closed_form.r, 1e-5f) << fraction;
+        }
+        if (fraction > 0.999f) {
+            EXPECT_NEAR(got.g, fog.colour.g, 1e-2f) << fraction;
+        }
         EXPECT_LE(got.r, previous_red) << "fades monotonically, at " << fraction;
         previous_red = got.r;
     }
@@ -300,7 +304,9 @@ TEST(MarchPass, FogTransmittanceInLanesEqualsTheOneRayForm) {
                     const glm::vec3 one = fog.transmittance(eye, {0.0f, dy[i], 0.0f}, distance[i]);
                     for (int c = 0; c < 3; ++c) {
                         // NaN only where falloff * dy * D overflows (D near FLT_MAX), in both.
-                        if (!(distance[i] > 1e30f)) ASSERT_FALSE(std::isnan(one[c])) << "dy " << dy[i] << " D " << distance[i];
+                        if (!(distance[i] > 1e30f)) {
+                            ASSERT_FALSE(std::isnan(one[c])) << "dy " << dy[i] << " D " << distance[i];
+                        }
                         if (std::isnan(one[c]) && std::isnan(t[c][i])) continue;
                         ASSERT_EQ(std::bit_cast<uint32_t>(t[c][i]), std::bit_cast<uint32_t>(one[c]))
                             << "falloff " << falloff << " dy " << dy[i] << " distance " << distance[i] << " channel " << c;

@@ -202,16 +202,97 @@ TEST(RasterMsaa, CoverageLayersWeighSurfaces) {
     const int expect_cover[3] = {2, 1, 1};
     glm::vec4 out(-1.0f);
     for (int j = 0; j < 3; ++j) {
-        const Tile t = layers.layer(j, glm::vec4(0.0f));
+        const Tile t = layers.layer(j, glm::vec4(0.0f), &out, 1);
         EXPECT_EQ(t.triangle_at(3, 4), expect_id[j]);
         EXPECT_EQ(t.depth_at(3, 4), expect_depth[j]);
         EXPECT_EQ(int(t.coverage[0]), expect_cover[j]);
         // Evaluated at each surface's first sample: 0, 1 and 3.
         EXPECT_EQ(t.centroid[0], positions[j == 0 ? 0 : j == 1 ? 1 : 3]);
         t.colour_at(3, 4) = glm::vec4(float(j + 1));
-        layers.accumulate(j, &out, 1);
+        layers.accumulate();
     }
     EXPECT_EQ(out, glm::vec4(0.5f * 1 + 0.25f * 2 + 0.25f * 3));
+}
+
+TEST(RasterMsaa, SparseLayersCoverTheirPixelsAndResolveEveryPixel) {
+    // A 37x29 tile at (70, 45) whose 4 samples show one of a few surfaces: mostly one per
+    // pixel, with a cluster of mixed pixels (up to four surfaces) in one corner and a few
+    // strays. Each layer j > 0 must hold every pixel that has a (j+1)-th surface and stay in
+    // their bounding box grown by one pixel; build() and build_planes() must agree; and the
+    // resolve must equal the direct average of the samples' colours.
+    const TileRect rect{70, 45, 107, 74};
+    const int w = rect.width(), h = rect.height(), samples = 4;
+    const size_t area = size_t(w) * size_t(h);
+    std::vector<uint32_t> ids(area * samples);
+    std::vector<float> depths(area * samples);
+    uint32_t seed = 12345u;
+    const auto next = [&] { return seed = seed * 1664525u + 1013904223u; };
+    for (int y = 0; y < h; ++y)
+        for (int x = 0; x < w; ++x) {
+            const size_t p = size_t(y) * size_t(w) + size_t(x);
+            const bool mixed = (x > 25 && y > 18) || next() % 97 == 0;
+            const uint32_t base = uint32_t(x / 9 + y / 7);
+            for (int s = 0; s < samples; ++s) {
+                const uint32_t r = next() % 5;
+                ids[size_t(s) * area + p] = mixed ? (r == 4 ? kNoTriangle : base + r) : base;
+                depths[size_t(s) * area + p] = float(next() % 1000) / 1000.0f;
+            }
+        }
+    const glm::vec2* positions = pipeline::sample_positions(samples);
+    const auto colour_of = [](uint32_t t, int x, int y) {
+        return t == kNoTriangle ? glm::vec4(0.25f, 0.5f, 0.75f, 1.0f)
+                                : glm::vec4(float(t % 7) / 7.0f, float(x) / 128.0f, float(y) / 128.0f, 1.0f);
+    };
+    std::vector<glm::vec4> resolved[2];
+    for (int way = 0; way < 2; ++way) {
+        CoverageLayers layers;
+        if (way == 0)
+            layers.build_planes(rect, samples, positions, ids.data(), depths.data());
+        else
+            layers.build(rect, samples, positions, [&](int x, int y, int s, uint32_t& t, float& d) {
+                const size_t p = size_t(y - rect.y0) * size_t(w) + size_t(x - rect.x0);
+                t = ids[size_t(s) * area + p];
+                d = depths[size_t(s) * area + p];
+            });
+        ASSERT_EQ(layers.layers(), 4);
+        resolved[way].assign(area, glm::vec4(-1.0f));
+        for (int j = 0; j < layers.layers(); ++j) {
+            const Tile t = layers.layer(j, glm::vec4(0.0f), resolved[way].data(), size_t(w));
+            // Every pixel with a (j+1)-th surface is inside, and the rect is their bounding
+            // box grown by one pixel.
+            TileRect box{rect.x1, rect.y1, rect.x0, rect.y0};
+            for (int y = rect.y0; y < rect.y1; ++y)
+                for (int x = rect.x0; x < rect.x1; ++x) {
+                    std::set<uint32_t> surfaces;
+                    for (int s = 0; s < samples; ++s)
+                        surfaces.insert(ids[size_t(s) * area + size_t(y - rect.y0) * size_t(w) + size_t(x - rect.x0)]);
+                    if (int(surfaces.size()) <= j) continue;
+                    box = {std::min(box.x0, x), std::min(box.y0, y), std::max(box.x1, x + 1), std::max(box.y1, y + 1)};
+                    ASSERT_TRUE(x >= t.rect.x0 && x < t.rect.x1 && y >= t.rect.y0 && y < t.rect.y1) << j;
+                    ASSERT_GT(int(t.coverage[t.offset(x, y)]), 0) << x << "," << y << " layer " << j;
+                }
+            if (j > 0) {
+                EXPECT_EQ(t.rect.x0, std::max(box.x0 - 1, rect.x0)) << j;
+                EXPECT_EQ(t.rect.y0, std::max(box.y0 - 1, rect.y0)) << j;
+                EXPECT_EQ(t.rect.x1, std::min(box.x1 + 1, rect.x1)) << j;
+                EXPECT_EQ(t.rect.y1, std::min(box.y1 + 1, rect.y1)) << j;
+            }
+            for (int y = t.rect.y0; y < t.rect.y1; ++y)
+                for (int x = t.rect.x0; x < t.rect.x1; ++x)
+                    if (t.active(x, y)) t.colour_at(x, y) = colour_of(t.triangle_at(x, y), x, y);
+            layers.accumulate();
+        }
+    }
+    for (int y = 0; y < h; ++y)
+        for (int x = 0; x < w; ++x) {
+            const size_t p = size_t(y) * size_t(w) + size_t(x);
+            glm::vec4 expected(0.0f);
+            for (int s = 0; s < samples; ++s)
+                expected += colour_of(ids[size_t(s) * area + p], rect.x0 + x, rect.y0 + y) * 0.25f;
+            const glm::vec4 got = resolved[0][p];
+            ASSERT_EQ(got, resolved[1][p]) << x << "," << y;
+            for (int c = 0; c < 4; ++c) ASSERT_NEAR(got[c], expected[c], 1e-6f) << x << "," << y;
+        }
 }
 
 TEST(RasterMsaa, BadSampleCountsAreRejected) {

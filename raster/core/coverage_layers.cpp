@@ -1,6 +1,7 @@
 #include "raster/core/coverage_layers.h"
 
 #include <algorithm>
+#include <cstring>
 
 #include "raster/core/visibility.h"
 
@@ -17,8 +18,9 @@ void CoverageLayers::set_primary(size_t p, const Surface& surface) {
 
 void CoverageLayers::add_mixed_pixel(size_t p, const uint32_t* triangle, const float* depth, size_t step) {
     Surface list[256];
-    int n = 0;
-    for (int s = 0; s < samples_; ++s) {
+    list[0] = {triangle[0], depth[0], 1, 0, 1};  // sample 0 starts the list
+    int n = 1;
+    for (int s = 1; s < samples_; ++s) {
         const uint32_t t = triangle[size_t(s) * step];
         const float d = depth[size_t(s) * step];
         int k = 0;
@@ -38,6 +40,13 @@ void CoverageLayers::add_mixed_pixel(size_t p, const uint32_t* triangle, const f
     set_primary(p, list[best]);
     for (int k = 0; k < n; ++k)
         if (k != best) others_.push_back(list[k]);
+    if (n > 1) mixed_pixels_.push_back(uint32_t(p));
+    const int w = rect_.width(), x = int(p % size_t(w)), y = int(p / size_t(w));
+    for (int j = 1; j < n; ++j) {
+        if (extent_.size() < size_t(j)) extent_.push_back({x, y, x + 1, y + 1});
+        TileRect& e = extent_[size_t(j - 1)];
+        e = {std::min(e.x0, x), std::min(e.y0, y), std::max(e.x1, x + 1), std::max(e.y1, y + 1)};
+    }
     layers_ = std::max(layers_, n);
     covered_ += n > 1 || list[0].triangle != kNoTriangle;
 }
@@ -57,6 +66,8 @@ void CoverageLayers::start(const TileRect& rect, int samples, const glm::vec2* p
     others_.clear();
     first_.clear();
     sample_depth_ = nullptr;
+    extent_.clear();
+    mixed_pixels_.clear();
 }
 
 void CoverageLayers::build_planes(const TileRect& rect, int samples, const glm::vec2* positions,
@@ -84,11 +95,21 @@ void CoverageLayers::build_planes(const TileRect& rect, int samples, const glm::
     if (positions) std::fill_n(primary_centroid_.data(), area, glm::vec2(0.0f));
     if (positions && samples <= 16)
         std::fill_n(primary_mask_.data(), area, samples >= 16 ? uint16_t(0xFFFF) : uint16_t((1u << samples) - 1u));
+    const uint8_t* m = mixed_.data();
+    uint64_t covered = 0;
+    for (size_t p = 0; p < area; ++p) covered += !m[p] & (t0[p] != kNoTriangle);
+    covered_ = covered;
+    // Runs of pixels that show one surface (memchr finds the next mixed one a vector at a
+    // time) share the same start in others_.
     first_.resize(area + 1);
-    for (size_t p = 0; p < area; ++p) {
-        first_[p] = uint32_t(others_.size());
-        if (!mixed_[p]) covered_ += t0[p] != kNoTriangle;
-        else add_mixed_pixel(p, triangles + p, depths + p, area);
+    for (size_t p = 0;;) {
+        const void* hit = std::memchr(m + p, 1, area - p);
+        const size_t next = hit ? size_t(static_cast<const uint8_t*>(hit) - m) : area;
+        std::fill(first_.begin() + std::ptrdiff_t(p), first_.begin() + std::ptrdiff_t(next), uint32_t(others_.size()));
+        if (next == area) break;
+        first_[next] = uint32_t(others_.size());
+        add_mixed_pixel(next, triangles + next, depths + next, area);
+        p = next + 1;
     }
     first_[area] = uint32_t(others_.size());
     set_sample_depths(depths, size_t(rect.width()), 1, area);
@@ -111,17 +132,35 @@ void CoverageLayers::build_uniform(const TileRect& rect, int samples, const glm:
     others_.clear();
     first_.assign(area + 1, 0);
     sample_depth_ = nullptr;
+    extent_.clear();
+    mixed_pixels_.clear();
 }
 
-Tile CoverageLayers::layer(int j, const glm::vec4& clear) {
-    const size_t w = size_t(rect_.width()), area = w * size_t(rect_.height());
+TileRect CoverageLayers::layer_rect(int j) const {
+    const TileRect& e = extent_[size_t(j - 1)];
+    return {rect_.x0 + std::max(e.x0 - 1, 0), rect_.y0 + std::max(e.y0 - 1, 0),
+            rect_.x0 + std::min(e.x1 + 1, rect_.width()), rect_.y0 + std::min(e.y1 + 1, rect_.height())};
+}
+
+Tile CoverageLayers::layer(int j, const glm::vec4& clear, glm::vec4* out, size_t stride) {
     const bool masks = positions_ && samples_ <= 16;
-    colour_.assign(area, clear);
+    layer_ = j;
+    layer_rect_ = j == 0 ? rect_ : layer_rect(j);
+    out_ = out;
+    out_stride_ = stride;
+    const size_t w = size_t(layer_rect_.width()), area = w * size_t(layer_rect_.height());
     Tile tile;
-    tile.rect = rect_;
+    tile.rect = layer_rect_;
     tile.stride = w;
-    tile.colour = colour_.data();
-    tile.colour_stride = w;
+    if (j == 0) {
+        for (size_t y = 0; y < size_t(layer_rect_.height()); ++y) std::fill_n(out + y * stride, w, clear);
+        tile.colour = out;
+        tile.colour_stride = stride;
+    } else {
+        colour_.assign(area, clear);
+        tile.colour = colour_.data();
+        tile.colour_stride = w;
+    }
     if (j == 0) {
         // Handed out as built: passes may change the ids and depths (a marched surface in
         // front), which matters to nothing after them but the resolve of this layer.
@@ -136,24 +175,25 @@ Tile CoverageLayers::layer(int j, const glm::vec4& clear) {
         coverage_.resize(area);
         if (positions_) centroid_.resize(area);
         if (masks) mask_.resize(area);
-        for (size_t p = 0; p < area; ++p) {
+        // Nothing where the pixel has no (j+1)-th surface: no triangle, and a depth nearer
+        // than anything, so that passes which test depth (transparency, marching, fog) find
+        // nothing to do either. Then the pixels that have one, from the list of mixed ones.
+        std::fill_n(triangle_.data(), area, kNoTriangle);
+        std::fill_n(depth_.data(), area, 0.0f);
+        std::fill_n(coverage_.data(), area, uint8_t(0));
+        if (masks) std::fill_n(mask_.data(), area, uint16_t(0));
+        const size_t rect_w = size_t(rect_.width());
+        const size_t dx = size_t(layer_rect_.x0 - rect_.x0), dy = size_t(layer_rect_.y0 - rect_.y0);
+        for (const uint32_t p : mixed_pixels_) {
             const uint32_t at = first_[p] + uint32_t(j - 1);
-            if (at < first_[p + 1]) {
-                const Surface& s = others_[at];
-                triangle_[p] = s.triangle;
-                depth_[p] = s.depth;
-                coverage_[p] = uint8_t(s.count);
-                if (positions_)
-                    centroid_[p] = int(s.count) == samples_ ? glm::vec2(0.0f) : positions_[s.first];
-                if (masks) mask_[p] = s.mask;
-            } else {
-                // Nothing here: no triangle, and a depth nearer than anything, so that passes
-                // which test depth (transparency, marching, fog) find nothing to do either.
-                triangle_[p] = kNoTriangle;
-                depth_[p] = 0.0f;
-                coverage_[p] = 0;
-                if (masks) mask_[p] = 0;
-            }
+            if (at >= first_[p + 1]) continue;
+            const size_t q = (size_t(p) / rect_w - dy) * w + (size_t(p) % rect_w - dx);
+            const Surface& s = others_[at];
+            triangle_[q] = s.triangle;
+            depth_[q] = s.depth;
+            coverage_[q] = uint8_t(s.count);
+            if (positions_) centroid_[q] = int(s.count) == samples_ ? glm::vec2(0.0f) : positions_[s.first];
+            if (masks) mask_[q] = s.mask;
         }
         tile.triangle = triangle_.data();
         tile.depth = depth_.data();
@@ -164,7 +204,10 @@ Tile CoverageLayers::layer(int j, const glm::vec4& clear) {
     if (masks) {
         tile.sample_count = samples_;
         tile.sample_offsets = positions_;
-        tile.sample_depth = sample_depth_;
+        // Addressed from the layer's first pixel, which for j > 0 may lie inside the rect.
+        tile.sample_depth = sample_depth_ ? sample_depth_ + size_t(layer_rect_.y0 - rect_.y0) * sample_depth_row_ +
+                                                size_t(layer_rect_.x0 - rect_.x0) * sample_depth_pixel_step_
+                                          : nullptr;
         tile.sample_depth_row = sample_depth_row_;
         tile.sample_depth_pixel_step = sample_depth_pixel_step_;
         tile.sample_depth_sample_step = sample_depth_sample_step_;
@@ -172,25 +215,40 @@ Tile CoverageLayers::layer(int j, const glm::vec4& clear) {
     return tile;
 }
 
-void CoverageLayers::copy_primary(uint32_t* triangle, float* depth, size_t stride) const {
-    const size_t w = size_t(rect_.width());
-    for (size_t y = 0; y < size_t(rect_.height()); ++y) {
-        std::copy_n(primary_triangle_.data() + y * w, w, triangle + y * stride);
-        std::copy_n(primary_depth_.data() + y * w, w, depth + y * stride);
-    }
-}
-
-void CoverageLayers::accumulate(int j, glm::vec4* out, size_t stride) const {
-    const size_t w = size_t(rect_.width());
+void CoverageLayers::accumulate() {
+    const TileRect& r = layer_rect_;
+    const size_t w = size_t(r.width());
     const float share = 1.0f / float(samples_);
-    for (int y = 0; y < rect_.height(); ++y)
-        for (size_t x = 0; x < w; ++x) {
-            const size_t p = size_t(y) * w + x;
-            if (!layer_coverage_[p]) continue;
-            const glm::vec4 c = colour_[p] * (float(layer_coverage_[p]) * share);
-            glm::vec4& o = out[size_t(y) * stride + x];
-            o = j == 0 ? c : o + c;
+    glm::vec4* out = out_ + size_t(r.y0 - rect_.y0) * out_stride_ + size_t(r.x0 - rect_.x0);
+    // Layer 0's colour is already in `out`; a pixel whose weight is exactly 1 (wholly
+    // covered, with a power-of-two sample count) keeps it. A layer j > 0 adds where it holds
+    // a surface. The pixels left alone (most of layer 0, most of the others' rects) are
+    // skipped eight coverage bytes at a time.
+    const bool whole_is_one = float(samples_) * share == 1.0f;
+    const uint8_t skip = layer_ == 0 ? (whole_is_one ? uint8_t(samples_) : uint8_t(0)) : uint8_t(0);
+    const uint64_t skip_word = uint64_t(skip) * 0x0101010101010101ull;
+    const bool can_skip = layer_ != 0 || whole_is_one;
+    for (size_t y = 0; y < size_t(r.height()); ++y) {
+        const uint8_t* coverage = layer_coverage_ + y * w;
+        const glm::vec4* colour = layer_ == 0 ? nullptr : colour_.data() + y * w;
+        glm::vec4* o = out + y * out_stride_;
+        for (size_t x = 0; x < w;) {
+            if (can_skip && x + 8 <= w) {
+                uint64_t word;
+                std::memcpy(&word, coverage + x, sizeof(word));
+                if (word == skip_word) {
+                    x += 8;
+                    continue;
+                }
+            }
+            const size_t end = std::min(w, x + 8);
+            for (; x < end; ++x) {
+                if (can_skip && coverage[x] == skip) continue;
+                const float weight = float(coverage[x]) * share;
+                o[x] = layer_ == 0 ? o[x] * weight : o[x] + colour[x] * weight;
+            }
         }
+    }
 }
 
 }  // namespace tessera

@@ -62,19 +62,26 @@ public:
     // Pixels with at least one sample covered by a triangle.
     uint64_t covered_pixels() const { return covered_; }
 
-    // Layer j over the rect of the last build(), in this object's buffers (valid until the
-    // next layer() or build()): triangle, depth, coverage (samples of the pixel's surface in
-    // this layer, 0 where the pixel has none: passes skip it), centroid (with positions)
-    // and colour cleared to `clear`; with positions and at most 16 samples, also each
-    // pixel's sample mask and the positions (Tile::sample_mask), for passes that sample the
-    // pixel's surface themselves.
-    Tile layer(int j, const glm::vec4& clear);
-    // Layer 0's ids and depths (as built, before any pass) into row-major buffers addressed
-    // from the rect's first pixel with `stride` elements per row.
-    void copy_primary(uint32_t* triangle, float* depth, size_t stride) const;
-    // Adds the colour of the last layer() times coverage / samples into `out` (a tile of the
-    // rect's size with `stride` elements per row; layer 0 assigns, the others add).
-    void accumulate(int j, glm::vec4* out, size_t stride) const;
+    // Layer j of the pixels the last build() listed, to be resolved into `out` (the rect's
+    // colour: `stride` elements per row from its first pixel). Layer 0 covers the rect and
+    // its colour is `out` itself, cleared to `clear`; a layer j > 0 covers the part of the
+    // rect around the pixels that have a (j+1)-th surface (their bounding box grown by one
+    // pixel, within the rect: edge pixels are a small part of most tiles, and the passes need
+    // not scan the rest; the extra pixel keeps every neighbour a pass compares inside the
+    // tile, see march/silhouette_grid.h), with its colour, cleared to `clear`, in this
+    // object's buffers. Valid until the next layer() or build(). It holds triangle, depth,
+    // coverage (samples of the pixel's surface in this layer, 0 where the pixel has none:
+    // passes skip it), centroid (with positions); with positions and at most 16 samples,
+    // also each pixel's sample mask and the positions (Tile::sample_mask), for passes that
+    // sample the pixel's surface themselves.
+    Tile layer(int j, const glm::vec4& clear, glm::vec4* out, size_t stride);
+    // Resolves the last layer() into its `out`: layer 0's colour is scaled by coverage /
+    // samples where the pixel is partly covered, the others' colour times coverage / samples
+    // is added.
+    void accumulate();
+    // Layer 0's ids and depths as built (before any pass), row-major over the rect.
+    const uint32_t* primary_triangles() const { return primary_triangle_.data(); }
+    const float* primary_depths() const { return primary_depth_.data(); }
 
 private:
     struct Surface {
@@ -91,6 +98,8 @@ private:
     // Pixel p whose samples (ids triangle[s * step], depths depth[s * step]) show more than
     // one surface: its surfaces listed, layer 0 the one with the most samples.
     void add_mixed_pixel(size_t p, const uint32_t* triangle, const float* depth, size_t step);
+    // The part of the rect layer j > 0 covers (see layer()).
+    TileRect layer_rect(int j) const;
 
     TileRect rect_;
     int samples_ = 1, layers_ = 0;
@@ -106,7 +115,10 @@ private:
     // their first samples; first_[p] .. first_[p + 1] are pixel p's.
     std::vector<Surface> others_;
     std::vector<uint32_t> first_;
+    std::vector<uint32_t> mixed_pixels_;  // the pixels with more than one surface, in order
     std::vector<uint8_t> mixed_;  // build_planes: per pixel, whether its samples differ
+    // extent_[j - 1]: bounding box of the pixels with a (j+1)-th surface, rect-relative.
+    std::vector<TileRect> extent_;
     // Layers 1 and up as layer() hands them out.
     AlignedVector<uint32_t> triangle_;
     AlignedVector<float> depth_;
@@ -114,9 +126,14 @@ private:
     std::vector<glm::vec2> centroid_;
     std::vector<uint16_t> mask_;
     std::vector<glm::vec4> colour_;
-    const uint8_t* layer_coverage_ = nullptr;  // the last layer()'s, for accumulate()
-    const float* sample_depth_ = nullptr;       // set_sample_depths()
+    const float* sample_depth_ = nullptr;  // set_sample_depths()
     size_t sample_depth_row_ = 0, sample_depth_pixel_step_ = 0, sample_depth_sample_step_ = 0;
+    // The last layer(), for accumulate().
+    int layer_ = 0;
+    TileRect layer_rect_;
+    const uint8_t* layer_coverage_ = nullptr;
+    glm::vec4* out_ = nullptr;
+    size_t out_stride_ = 0;
 };
 
 template <class SampleAt>

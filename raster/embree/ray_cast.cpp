@@ -6,6 +6,7 @@
 #include "raster/core/tile.h"
 #include "raster/pipeline/sample_pattern.h"
 
+#include <algorithm>
 #include <stdexcept>
 #include <string>
 
@@ -171,12 +172,11 @@ void cast_primary_rays(const RayScene& scene, const glm::mat4& view_projection, 
             triangle = out.sample_triangle[out.sample_index(x, y, s)];
             depth = out.sample_depth[out.sample_index(x, y, s)];
         });
-        const Tile primary = layers.layer(0, glm::vec4(0.0f));
-        for (int y = tile.y0; y < tile.y1; ++y)
-            for (int x = tile.x0; x < tile.x1; ++x) {
-                out.triangle[size_t(y) * size_t(width) + size_t(x)] = primary.triangle_at(x, y);
-                out.depth[size_t(y) * size_t(width) + size_t(x)] = primary.depth_at(x, y);
-            }
+        for (int y = tile.y0; y < tile.y1; ++y) {
+            const size_t from = size_t(y - tile.y0) * size_t(tile.width());
+            std::copy_n(layers.primary_triangles() + from, tile.width(), &out.triangle[size_t(y) * size_t(width) + size_t(tile.x0)]);
+            std::copy_n(layers.primary_depths() + from, tile.width(), &out.depth[size_t(y) * size_t(width) + size_t(tile.x0)]);
+        }
     });
 }
 

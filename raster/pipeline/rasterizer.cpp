@@ -72,8 +72,16 @@ void multisampled_tile(TileBuffers& buffers, const TileRect& rect, VisibilityBuf
                     visibility.sample_depth[at] = drawn ? depths[size_t(s) * area + p] : clear_depth;
                 }
             }
+    // Layer 0 into the frame's visibility, which no pass of this tile reads (they read the
+    // layers): streamed, as flush() streams a tile nothing reads again soon.
     const size_t origin = size_t(rect.y0) * size_t(visibility.width) + size_t(rect.x0);
-    layers.copy_primary(visibility.triangle.data() + origin, visibility.depth.data() + origin, size_t(visibility.width));
+    for (int y = 0; y < h; ++y) {
+        const size_t to = origin + size_t(y) * size_t(visibility.width), from = size_t(y) * size_t(w);
+        simd::stream_copy(visibility.triangle.data() + to, layers.primary_triangles() + from, size_t(w));
+        simd::stream_copy(reinterpret_cast<uint32_t*>(visibility.depth.data() + to),
+                          reinterpret_cast<const uint32_t*>(layers.primary_depths() + from), size_t(w));
+    }
+    simd::stream_fence();
 }
 
 }  // namespace
@@ -224,9 +232,10 @@ void Rasterizer::render(const Mesh& mesh, const glm::mat4& view_projection, cons
             scratch.color.resize(size_t(grid.size) * grid.size);
             TileWork work{&s.chunks, &source, tile, &scratch.fragments};
             for (int j = 0; j < scratch.layers.layers(); ++j) {
-                const TileContext context = context_for(scratch.layers.layer(j, options.clear_color), work);
+                const TileContext context = context_for(
+                    scratch.layers.layer(j, options.clear_color, scratch.color.data(), size_t(grid.size)), work);
                 for (const TilePass& pass : passes) pass(context);
-                scratch.layers.accumulate(j, scratch.color.data(), size_t(grid.size));
+                scratch.layers.accumulate();
             }
             if (options.resolved_tile) options.resolved_tile(rect, scratch.color.data(), size_t(grid.size));
             if (color)

@@ -129,12 +129,9 @@ void reference_rasterize(const Mesh& mesh, const glm::mat4& vp, const Viewport& 
                      triangle = out.sample_triangle[out.sample_index(x, y, s)];
                      depth = out.sample_depth[out.sample_index(x, y, s)];
                  });
-    const Tile primary = layers.layer(0, glm::vec4(0.0f));
-    for (int y = 0; y < viewport.height; ++y)
-        for (int x = 0; x < viewport.width; ++x) {
-            out.triangle[size_t(y) * viewport.width + x] = primary.triangle_at(x, y);
-            out.depth[size_t(y) * viewport.width + x] = primary.depth_at(x, y);
-        }
+    const size_t area = size_t(viewport.width) * size_t(viewport.height);
+    std::copy_n(layers.primary_triangles(), area, out.triangle.data());
+    std::copy_n(layers.primary_depths(), area, out.depth.data());
 }
 
 }  // namespace tessera::pipeline

@@ -145,11 +145,15 @@ struct SampleLanes {
     SampleLanes(const TriangleSetup& t, std::span<const SampleOffset> pattern) : count(int(pattern.size())) {
         for (int i = 0; i < 3; ++i) {
             lo[i] = hi[i] = sample_offset(t, i, pattern[0].x, pattern[0].y);
+            const bool top_left = is_top_left(t.dx[i], t.dy[i]);
             for (int s = 0; s < count; ++s) {
                 offset[i][s] = sample_offset(t, i, pattern[s].x, pattern[s].y);
                 lo[i] = std::min(lo[i], offset[i][s]);
                 hi[i] = std::max(hi[i], offset[i][s]);
-                const bool holds = holds_sample(t, i, pattern[s].x, pattern[s].y);
+                // holds_sample()'s first two tests inline (a top-left edge whose sample step is
+                // a whole number of F units: rare), which skip the call for almost every edge.
+                const bool maybe = top_left && sample_step_is_whole(t, i, pattern[s].x, pattern[s].y);
+                const bool holds = maybe && holds_sample(t, i, pattern[s].x, pattern[s].y);
                 on_edge[i][s] = holds ? -offset[i][s] : kNever;
                 edge_holds |= unsigned(holds) << i;
             }
@@ -183,9 +187,11 @@ inline void traverse_sample_stamps(const DepthPlane& plane, const EdgeLanes (&e)
     const bool accepted[3] = {e[0].accepted, e[1].accepted, e[2].accepted};
     const vint hi0(accepted[0] ? 0 : samples.hi[0]), hi1(accepted[1] ? 0 : samples.hi[1]),
         hi2(accepted[2] ? 0 : samples.hi[2]);
-    int32_t off[3][kMaxSamples];
-    for (int i = 0; i < 3; ++i)
-        for (int s = 0; s < n; ++s) off[i][s] = accepted[i] ? 0 : samples.offset[i][s];
+    // Pointers, not a copy: a per-triangle copy of the offsets compiled to `rep movs`, whose
+    // start-up cost was most of a sub-pixel triangle's traversal.
+    static constexpr int32_t kNoOffsets[kMaxSamples] = {};
+    const int32_t* off[3] = {accepted[0] ? kNoOffsets : samples.offset[0], accepted[1] ? kNoOffsets : samples.offset[1],
+                             accepted[2] ? kNoOffsets : samples.offset[2]};
     const vint zero(0);
     const unsigned stamps_per_row = unsigned(tile_size / kStampW);
     for (int sy = sy0; sy <= sy1; sy += kStampH) {

@@ -65,7 +65,7 @@ bool line_meets_centres(int32_t dX, int32_t dY, int64_t k_over_256) {
 
 bool holds_sample(const TriangleSetup& t, int i, int ox, int oy) {
     if (!is_top_left(t.dx[i], t.dy[i])) return false;
-    const int64_t k = int64_t(t.residue[i]) + 16 * (int64_t(t.dx[i]) * oy - int64_t(t.dy[i]) * ox);
+    const int64_t k = sample_step(t, i, ox, oy);
     if ((k & (kSubpixels - 1)) != 0) return false;
     // K >> 8 from F at the box corner (setup_triangle), then the sample's whole part.
     const int64_t whole = t.f[i] - int64_t(t.dx[i]) * t.miny + int64_t(t.dy[i]) * t.minx + (k >> kSubpixelBits);

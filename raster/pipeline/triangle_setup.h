@@ -119,12 +119,24 @@ enum class SetupResult { drawn, zero_area, culled_face, no_samples };
 SetupResult setup_triangle(const WindowVertex& v0, const WindowVertex& v1, const WindowVertex& v2,
                            CullMode cull, const Viewport& viewport, TriangleSetup& out, int samples = 1);
 
+// The change of edge i's function from a pixel centre to the sample (ox, oy) / 16 pixels
+// away in E units (256 per unit of F, see holds_sample() below), plus the edge's residue:
+// sample_offset() is its floor division by 256.
+inline int64_t sample_step(const TriangleSetup& t, int i, int ox, int oy) {
+    return int64_t(t.residue[i]) + 16 * (int64_t(t.dx[i]) * oy - int64_t(t.dy[i]) * ox);
+}
+
 // How much the reduced edge function F_i of `t` at a pixel changes from the pixel centre to
 // the sample (ox, oy) / 16 pixels away: F_i(sample) = F_i(centre) + sample_offset(t, i, ox, oy)
 // with the same fill rule, exactly (floor((residue + 16 (dX oy - dY ox)) / 256)).
 inline int32_t sample_offset(const TriangleSetup& t, int i, int ox, int oy) {
-    const int64_t k = int64_t(t.residue[i]) + 16 * (int64_t(t.dx[i]) * oy - int64_t(t.dy[i]) * ox);
-    return int32_t(k >> kSubpixelBits);
+    return int32_t(sample_step(t, i, ox, oy) >> kSubpixelBits);
+}
+
+// Whether that change is a whole number of F units: a sample can lie exactly on edge i
+// (holds_sample()) only then.
+inline bool sample_step_is_whole(const TriangleSetup& t, int i, int ox, int oy) {
+    return (sample_step(t, i, ox, oy) & (kSubpixels - 1)) == 0;
 }
 
 // Whether samples can lie exactly on edge i of `t`: the edge function at the centre of pixel

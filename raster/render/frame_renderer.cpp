@@ -682,8 +682,10 @@ void FrameRenderer::Impl::render_region(const FrameState& frame, const Region& r
                 l.set_sample_depths(&visibility.sample_depth[visibility.sample_index(rect.x0, rect.y0, 0)],
                                     size_t(visibility.width) * size_t(samples), size_t(samples), 1);
                 for (int j = 0; j < l.layers(); ++j) {
-                    run_tile_passes(frame, passes, visibility, l.layer(j, glm::vec4(0.0f)), nullptr, shadowed);
-                    l.accumulate(j, &tile.colour_at(rect.x0, rect.y0), tile.colour_stride);
+                    run_tile_passes(frame, passes, visibility,
+                                    l.layer(j, glm::vec4(0.0f), &tile.colour_at(rect.x0, rect.y0), tile.colour_stride),
+                                    nullptr, shadowed);
+                    l.accumulate();
                 }
             } else if (in_rows(rect)) {
                 run_tile_passes(frame, passes, visibility, tile, nullptr, shadowed);
