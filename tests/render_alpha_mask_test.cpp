@@ -7,6 +7,7 @@
 #include <memory>
 
 #include "raster/render/frame_renderer.h"
+#include "shading_scenes.h"
 
 using namespace tessera;
 
@@ -22,13 +23,7 @@ scene::Object square(const std::string& name, float z, uint32_t material) {
     return {name, mesh, material, {}, {}};
 }
 
-scene::Material flat_colour(glm::vec3 kd) {
-    scene::Material m;
-    m.kd = kd;
-    m.ka = kd;
-    m.ks = glm::vec3(0.0f);
-    return m;
-}
+using test::flat_colour;
 
 // Seen head-on, lit so that a surface facing the camera shows exactly its kd: the masked front
 // square (white, its texture transparent on the left half) is submitted first, then a masked

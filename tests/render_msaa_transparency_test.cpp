@@ -13,6 +13,7 @@
 
 #include "raster/pipeline/sample_pattern.h"
 #include "raster/render/frame_renderer.h"
+#include "shading_scenes.h"
 
 using namespace tessera;
 
@@ -23,13 +24,7 @@ constexpr float kEyeZ = 4.0f, kFovy = 40.0f, kFront = -0.25f;
 // The front triangle: its edge A-B crosses the frame diagonally, the others lie outside it.
 const glm::vec2 kA{-1.6f, -3.0f}, kB{1.2f, 3.0f}, kC{-8.0f, 0.0f};
 
-scene::Material flat_colour(glm::vec3 kd) {
-    scene::Material m;
-    m.kd = kd;
-    m.ka = kd;
-    m.ks = glm::vec3(0.0f);
-    return m;
-}
+using test::flat_colour;
 
 // A red square filling the view at z = -0.5, and in front of it the green triangle, blended
 // (opacity 0.5) or alpha-tested (cutoff 0.5, alpha 1: it survives everywhere).

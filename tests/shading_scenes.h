@@ -12,6 +12,16 @@
 
 namespace tessera::test {
 
+// A material lit only by its own colour where ambient and diffuse light add to one: kd and
+// ka both `kd`, no highlight.
+inline scene::Material flat_colour(glm::vec3 kd) {
+    scene::Material m;
+    m.kd = kd;
+    m.ka = kd;
+    m.ks = glm::vec3(0.0f);
+    return m;
+}
+
 inline scene::Scene base_scene(scene::Material material) {
     scene::Scene s;
     s.camera.eye = {0.0f, 0.6f, 3.2f};
