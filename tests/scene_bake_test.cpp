@@ -5,6 +5,8 @@
 
 #include <tbb/global_control.h>
 
+#include <cstring>
+
 #include "raster/geometry/param_surface.h"
 #include "raster/geometry/surfaces.h"
 #include "raster/scene/scene.h"
@@ -105,6 +107,80 @@ TEST(SceneBake, BadReferencesAreClearErrors) {
     scene = two_objects();
     scene.materials[0].diffuse_texture = 3;
     EXPECT_THROW(scene::bake(scene), std::invalid_argument);
+}
+
+namespace {
+
+// Bit-for-bit equality of two bakes (positions, normals, uvs, tangents, indices, materials
+// and parts).
+void expect_same_bake(const scene::BakedScene& got, const scene::BakedScene& want, int step) {
+    const auto bytes_equal = [](const auto& a, const auto& b) {
+        return a.size() == b.size() && (a.empty() || std::memcmp(a.data(), b.data(), a.size() * sizeof(a[0])) == 0);
+    };
+    EXPECT_TRUE(bytes_equal(got.mesh.positions, want.mesh.positions)) << "step " << step;
+    EXPECT_TRUE(bytes_equal(got.mesh.normals, want.mesh.normals)) << "step " << step;
+    EXPECT_TRUE(bytes_equal(got.mesh.uvs, want.mesh.uvs)) << "step " << step;
+    EXPECT_TRUE(bytes_equal(got.mesh.tangents, want.mesh.tangents)) << "step " << step;
+    EXPECT_EQ(got.mesh.indices, want.mesh.indices) << "step " << step;
+    EXPECT_EQ(got.triangle_material, want.triangle_material) << "step " << step;
+    EXPECT_EQ(got.vertex_material, want.vertex_material) << "step " << step;
+    ASSERT_EQ(got.objects.size(), want.objects.size()) << "step " << step;
+    for (size_t i = 0; i < got.objects.size(); ++i) {
+        EXPECT_EQ(got.objects[i].first_vertex, want.objects[i].first_vertex) << "step " << step;
+        EXPECT_EQ(got.objects[i].first_triangle, want.objects[i].first_triangle) << "step " << step;
+        EXPECT_EQ(got.objects[i].still, want.objects[i].still) << "step " << step;
+    }
+}
+
+}  // namespace
+
+TEST(SceneBake, BakerKeepsWhatDidNotChangeAndEqualsAFreshBake) {
+    // Frame after frame, one change at a time: the baker's result must equal bake() of the
+    // same scene, and it must rewrite only the objects that changed.
+    scene::Scene scene = two_objects();
+    const auto ball = std::make_shared<const Mesh>(geometry::tessellate(geometry::sphere_surface({0, 0, 0}, 0.5f), 8, 4));
+    // The same vertex count as `ball`, without normals or uvs (the other objects have them):
+    // put in a slot that had them, its range must read zeros, not what the slot held.
+    Mesh bare = *ball;
+    bare.normals.clear();
+    bare.uvs.clear();
+    const auto bare_ball = std::make_shared<const Mesh>(bare);
+    scene.objects.push_back({"c", ball, 0, {}, {}});
+    scene.objects.back().transform.translation = {0, 3, 0};
+    scene.objects[0].animate = [](scene::Object&, float) {};  // marks it as moving (MeshPart::still)
+    scene::SceneBaker baker;
+    const auto check = [&](int step, size_t rebaked) {
+        const scene::BakedScene& got = baker.bake(scene);
+        expect_same_bake(got, scene::bake(scene), step);
+        EXPECT_EQ(baker.objects_baked(), rebaked) << "step " << step;
+    };
+    check(0, 3);
+    check(1, 0);                                         // nothing changed
+    scene.objects[0].transform.translation.x = 1.0f;     // a move
+    check(2, 1);
+    scene.objects[1].material = 0;                       // a material
+    check(3, 1);
+    scene.objects[2].geometry = std::make_shared<const Mesh>(*ball);  // a new mesh, same values
+    check(4, 1);
+    scene.objects[2].geometry = bare_ball;               // same sizes, fewer attributes
+    check(5, 1);
+    scene.objects[0].transform.scale = {-1, 1, 1};       // a mirror
+    check(6, 1);
+    scene.objects.pop_back();                            // another layout
+    check(7, 2);
+    const auto kept = scene.objects[1].geometry;
+    scene.objects[1].geometry = nullptr;                 // an error found before anything is
+    EXPECT_THROW(baker.bake(scene), std::invalid_argument);  // written: the last bake stands
+    scene.objects[1].geometry = kept;
+    check(8, 0);
+    scene.objects[0].transform.scale = {0, 1, 1};        // an error while writing
+    EXPECT_THROW(baker.bake(scene), std::invalid_argument);
+    scene.objects[0].transform.scale = {-1, 1, 1};
+    check(9, 2);                                         // nothing of before is trusted
+    Mesh broken = *ball;
+    broken.indices[4] = uint32_t(broken.positions.size());
+    scene.objects[1].geometry = std::make_shared<const Mesh>(broken);  // an index out of range
+    EXPECT_THROW(baker.bake(scene), std::invalid_argument);
 }
 
 TEST(SceneAnimate, HooksRunWithTheSceneTime) {

@@ -93,7 +93,7 @@ void build_shadow_maps(pipeline::Rasterizer& rasterizer, const Mesh& mesh, std::
 // BVH (kept by the renderer, see Impl::rays), the lights' shadow tests, the metaballs at this
 // time.
 struct FrameState {
-    scene::BakedScene baked;
+    const scene::BakedScene* baked = nullptr;  // Impl::baker's
     const embree::RayScene* rays = nullptr;
     std::vector<glm::vec3> light_targets;
     shadow::LightTest light_test;
@@ -141,6 +141,8 @@ struct FrameRenderer::Impl {
     // The BVH of the baked scene, one part per object, kept from frame to frame: an object
     // that did not move keeps its BVH (embree/scene.h, "Animation by parts").
     std::optional<embree::RayScene> rays;
+    // The scene baked frame after frame, still objects kept where they are.
+    scene::SceneBaker baker;
     std::vector<procedural::TerrainField> terrains;  // one per terrain pass, built once
     int rows_first = 0, rows_last = 1 << 30;  // set_rows
     // Reused from frame to frame (and region to region): its pages are touched once.
@@ -323,22 +325,22 @@ void FrameRenderer::Impl::prepare(float time, FrameState& frame, FrameStats& sta
     {
         TraceScope trace("bake");
         const auto t0 = Clock::now();
-        frame.baked = scene::bake(s);
+        frame.baked = &baker.bake(s);
         stats.bake_ms = ms_since(t0);
     }
-    stats.triangles = frame.baked.mesh.triangle_count();
+    stats.triangles = frame.baked->mesh.triangle_count();
     if (device) {
         TraceScope trace("bvh");
         const auto t0 = Clock::now();
         try {
-            if (rays) rays->update(frame.baked.mesh, frame.baked.objects);
-            else rays.emplace(*device, frame.baked.mesh, frame.baked.objects);
+            if (rays) rays->update(frame.baked->mesh, frame.baked->objects);
+            else rays.emplace(*device, frame.baked->mesh, frame.baked->objects);
         } catch (...) {
             rays.reset();  // half updated: the next frame builds afresh
             throw;
         }
         frame.rays = &*rays;
-        stats.bvh_objects = frame.baked.objects.size();
+        stats.bvh_objects = frame.baked->objects.size();
         stats.bvh_objects_built = rays->parts_built();
         stats.bvh_ms = ms_since(t0);
     }
@@ -350,7 +352,7 @@ void FrameRenderer::Impl::prepare(float time, FrameState& frame, FrameStats& sta
             // Fitted to the whole frame's camera (regions and bands share the maps).
             TraceScope map_trace("shadow maps");
             const auto t0 = Clock::now();
-            build_shadow_maps(map_rasterizer, frame.baked.mesh, s.lights, s.camera, maps);
+            build_shadow_maps(map_rasterizer, frame.baked->mesh, s.lights, s.camera, maps);
             stats.shadow_maps_ms = ms_since(t0);
             for (const shadow::ShadowMap& map : maps) {
                 stats.shadow_cascades += uint64_t(map.cascade_count());
@@ -368,7 +370,7 @@ void FrameRenderer::Impl::prepare(float time, FrameState& frame, FrameStats& sta
     bool any = false;
     for (const scene::Material& m : s.materials) any |= m.transparent() || m.masked();
     if (any) {
-        const std::vector<uint32_t>& material = frame.baked.triangle_material;
+        const std::vector<uint32_t>& material = frame.baked->triangle_material;
         frame.transparent.resize(material.size());
         for (size_t t = 0; t < material.size(); ++t) {
             const scene::Material& m = s.materials[material[t]];
@@ -379,7 +381,7 @@ void FrameRenderer::Impl::prepare(float time, FrameState& frame, FrameStats& sta
 
 RegionPasses::RegionPasses(const AnimatedScene& scene, const FrameState& frame, const Region& region,
                            std::span<const procedural::TerrainField> terrains, const pipeline::ClipVertices* rasterized)
-    : shading(frame.baked, scene.scene,
+    : shading(*frame.baked, scene.scene,
               shade::RenderState{region.camera, region.width, region.height, scene.scene.lights, rasterized}),
       pixel_rays(region.camera.view_projection(), region.width, region.height),
       march_rays(region.camera, region.width, region.height) {
@@ -393,7 +395,7 @@ RegionPasses::RegionPasses(const AnimatedScene& scene, const FrameState& frame, 
             shade::RenderState dimmed = shading.state();
             for (size_t l = 0; l < light_count; ++l)
                 if (!(mask & (1u << l))) dimmed.lights[l].Le = glm::vec3(0.0f);
-            subset_shading[mask] = std::make_unique<shade::FrameShading>(frame.baked, s, std::move(dimmed));
+            subset_shading[mask] = std::make_unique<shade::FrameShading>(*frame.baked, s, std::move(dimmed));
         });
     }
     size_t terrain_i = 0, metaball_i = 0;
@@ -433,7 +435,7 @@ void FrameRenderer::Impl::shade_shadows(const FrameState& frame, const RegionPas
     thread_local std::vector<uint16_t> edge_scratch;
     thread_local std::vector<uint32_t> edges;
     const size_t w = size_t(visibility.width);
-    shadow::gather_surface_points(tile, w, frame.baked.mesh, passes.pixel_rays, points, frame.light_targets);
+    shadow::gather_surface_points(tile, w, frame.baked->mesh, passes.pixel_rays, points, frame.light_targets);
     lit.assign(points.size(), 0);
     frame.light_test(points, frame.light_targets, lit);
     const uint32_t all_lit = passes.all_lit;
@@ -502,7 +504,7 @@ void FrameRenderer::Impl::shade_shadow_edges(const FrameState& frame, const Regi
     seen.assign(pixels.size(), 0);
     const glm::vec2* positions = pipeline::sample_positions(samples);
     for (size_t s = 0; s < n; ++s) {
-        shadow::gather_surface_points_at(tile, w, frame.baked.mesh, passes.pixel_rays, pixels, positions[s],
+        shadow::gather_surface_points_at(tile, w, frame.baked->mesh, passes.pixel_rays, pixels, positions[s],
                                          at_sample, frame.light_targets);
         lit.assign(at_sample.size(), 0);
         frame.light_test(at_sample, frame.light_targets, lit);
@@ -649,7 +651,7 @@ void FrameRenderer::Impl::render_region(const FrameState& frame, const Region& r
             };
         pipeline::RasterStats raster;
         if (encode_tiles) options.tile_color = true;
-        rasterizer.render(frame.baked.mesh, region.camera.view_projection(), pipeline::Viewport(w, h), options,
+        rasterizer.render(frame.baked->mesh, region.camera.view_projection(), pipeline::Viewport(w, h), options,
                           visibility, {&pass, 1}, encode_tiles ? nullptr : &colour, &raster);
         stats.raster += raster;
         stats.tiles_ms += raster.passes_ms;
@@ -699,7 +701,7 @@ void FrameRenderer::Impl::render_region(const FrameState& frame, const Region& r
         });
         stats.tiles_ms += ms_since(t0);
     }
-    if (const shade::OutlinePass outlines(visibility, region.camera, frame.baked.triangle_material,
+    if (const shade::OutlinePass outlines(visibility, region.camera, frame.baked->triangle_material,
                                           scene.scene.materials);
         outlines.active()) {
         // Over the finished pixels (after fog): it reads the neighbours' depths, across tiles.

@@ -7,6 +7,7 @@
 #pragma once
 #include <functional>
 #include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -54,6 +55,15 @@ struct BakedScene {
     std::vector<MeshPart> objects;            // where each object's vertices and triangles went
 };
 
+// Where each object's vertices and indices go in a bake (object i's from first_vertex[i] and
+// first_index[i]), and which attributes the baked mesh has.
+struct BakeLayout {
+    std::vector<size_t> first_vertex, first_index;
+    bool normals = false, uvs = false, tangents = false;
+
+    bool operator==(const BakeLayout&) const = default;
+};
+
 // Applies each object's model matrix to its vertices (normals by the inverse transpose,
 // renormalised), concatenating objects in order, so triangle ids follow the submission order
 // of objects. Objects and big vertex ranges run in parallel; the result does not depend on
@@ -61,5 +71,31 @@ struct BakedScene {
 // reversed so that front faces stay counter-clockwise. Objects without normals or uvs get
 // zeros there (shading then uses the face normal). Calls validate() first.
 BakedScene bake(const Scene& scene);
+
+// bake() frame after frame, rewriting only what changed: an object whose geometry (the same
+// Mesh), transform and material are those it had in the previous bake, in a scene whose
+// objects' sizes and attributes are laid out as before, keeps its baked vertices and
+// triangles (an animation's still objects: the ground, the buildings). The bake of an object
+// is a function of those three alone, so the result equals bake(scene) bit for bit. The
+// meshes of the previous bake are held, so that a new mesh cannot take an old one's address.
+class SceneBaker {
+public:
+    // The bake of `scene`, valid until the next call. Throws as bake() does; a throw while
+    // objects are being written leaves nothing of the previous bake to be kept.
+    const BakedScene& bake(const Scene& scene);
+    // How many objects the last bake() wrote (the others were kept).
+    size_t objects_baked() const { return objects_baked_; }
+
+private:
+    struct Baked {
+        std::shared_ptr<const Mesh> geometry;
+        Transform transform;
+        uint32_t material = 0;
+    };
+    BakedScene baked_;
+    std::vector<Baked> baked_objects_;
+    std::optional<BakeLayout> layout_;  // of baked_; none until a bake has succeeded
+    size_t objects_baked_ = 0;
+};
 
 }  // namespace tessera::scene
