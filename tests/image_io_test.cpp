@@ -86,6 +86,37 @@ TEST(ImageIO, PngChunkLongerThanTheFileIsRefusedFirst) {
     EXPECT_FALSE(io::png_chunk_problem(damaged));
 }
 
+// A header claiming a side over 2^16 pixels is refused before decoding, even when the whole
+// image would be small enough: OpenImageIO sizes its conversion buffer by 256 scanlines of
+// the claimed width (a BMP claiming 83,886,080 x 1 made it allocate 60 GiB).
+TEST(ImageIO, SideLongerThan65536IsRefusedFirst) {
+    const int w = 4, h = 1;
+    std::vector<uint8_t> pixels(w * h * 3, 100);
+    const fs::path path = scratch("wide.bmp");
+    io::write_image(path, {w, h, 3, io::PixelType::u8, pixels.data()});
+    EXPECT_NO_THROW(io::read_image(path));
+    std::vector<uint8_t> bytes;
+    {
+        std::ifstream in(path, std::ios::binary);
+        bytes.assign(std::istreambuf_iterator<char>(in), {});
+    }
+    ASSERT_GT(bytes.size(), 26u);
+    ASSERT_EQ(bytes[0], 'B');
+    ASSERT_EQ(bytes[1], 'M');
+    // BITMAPINFOHEADER width, little-endian at byte 18: 83,886,080 (0x05000000).
+    bytes[18] = 0x00, bytes[19] = 0x00, bytes[20] = 0x00, bytes[21] = 0x05;
+    {
+        std::ofstream out(path, std::ios::binary | std::ios::trunc);
+        out.write(reinterpret_cast<const char*>(bytes.data()), std::streamsize(bytes.size()));
+    }
+    try {
+        io::read_image(path);
+        FAIL() << "a BMP 83886080 pixels wide was read";
+    } catch (const Error& e) {
+        EXPECT_NE(std::string(e.what()).find("unsupported image size 83886080x1"), std::string::npos) << e.what();
+    }
+}
+
 TEST(ImageIO, ExrKeepsFloats) {
     std::vector<float> pixels = {0.0f, 0.25f, 1.5f, 1e4f};
     const fs::path path = scratch("round.exr");

@@ -139,9 +139,14 @@ void decode(OIIO::ImageInput& in, const std::string& what, FloatImage& image) {
     const OIIO::ImageSpec& spec = in.spec();
     // Guard against absurd headers before allocating: a 200-byte file can claim gigapixels
     // (found by fuzz_image), and the float buffer is allocated before decoding starts. 2^28
-    // floats (1 GiB) still holds an 8192x8192 RGBA texture.
+    // floats (1 GiB) still holds an 8192x8192 RGBA texture. A side is held to 2^16 pixels too:
+    // OpenImageIO 2.4's read_image converts a chunk of 256 native scanlines at a time, sized
+    // by the width alone, so a BMP claiming 83,886,080 x 1 pixels made it allocate 60 GiB
+    // (found by fuzz_image).
+    constexpr int kMaxSide = 1 << 16;
     const uint64_t count = uint64_t(spec.width) * uint64_t(spec.height) * uint64_t(spec.nchannels);
-    if (spec.width <= 0 || spec.height <= 0 || spec.nchannels <= 0 || count > (uint64_t(1) << 28))
+    if (spec.width <= 0 || spec.height <= 0 || spec.nchannels <= 0 || spec.width > kMaxSide ||
+        spec.height > kMaxSide || count > (uint64_t(1) << 28))
         throw Failure("cannot read " + what + ": unsupported image size " + std::to_string(spec.width) + "x" +
                       std::to_string(spec.height));
     image = FloatImage{spec.width, spec.height, spec.nchannels, std::vector<float>(count)};
