@@ -25,6 +25,16 @@ fs::path scratch(const char* name) {
     return dir / name;
 }
 
+std::vector<uint8_t> file_bytes(const fs::path& path) {
+    std::ifstream in(path, std::ios::binary);
+    return {std::istreambuf_iterator<char>(in), {}};
+}
+
+void overwrite(const fs::path& path, const std::vector<uint8_t>& bytes) {
+    std::ofstream out(path, std::ios::binary | std::ios::trunc);
+    out.write(reinterpret_cast<const char*>(bytes.data()), std::streamsize(bytes.size()));
+}
+
 size_t files_in(const fs::path& dir) {
     return size_t(std::distance(fs::directory_iterator(dir), fs::directory_iterator()));
 }
@@ -53,11 +63,7 @@ TEST(ImageIO, PngChunkLongerThanTheFileIsRefusedFirst) {
     std::vector<uint8_t> pixels(w * h * 3, 100);
     const fs::path path = scratch("chunks.png");
     io::write_image(path, {w, h, 3, io::PixelType::u8, pixels.data()});
-    std::vector<uint8_t> bytes;
-    {
-        std::ifstream in(path, std::ios::binary);
-        bytes.assign(std::istreambuf_iterator<char>(in), {});
-    }
+    std::vector<uint8_t> bytes = file_bytes(path);
     ASSERT_GT(bytes.size(), 33u);
     EXPECT_FALSE(io::png_chunk_problem(bytes));
     EXPECT_NO_THROW(io::read_image(path));
@@ -67,10 +73,7 @@ TEST(ImageIO, PngChunkLongerThanTheFileIsRefusedFirst) {
     const std::optional<std::string> problem = io::png_chunk_problem(damaged);
     ASSERT_TRUE(problem);
     EXPECT_NE(problem->find("'IHDR' at byte 8 declares 2053532012 bytes"), std::string::npos) << *problem;
-    {
-        std::ofstream out(path, std::ios::binary | std::ios::trunc);
-        out.write(reinterpret_cast<const char*>(damaged.data()), std::streamsize(damaged.size()));
-    }
+    overwrite(path, damaged);
     try {
         io::read_image(path);
         FAIL() << "a damaged PNG was read";
@@ -95,20 +98,13 @@ TEST(ImageIO, SideLongerThan65536IsRefusedFirst) {
     const fs::path path = scratch("wide.bmp");
     io::write_image(path, {w, h, 3, io::PixelType::u8, pixels.data()});
     EXPECT_NO_THROW(io::read_image(path));
-    std::vector<uint8_t> bytes;
-    {
-        std::ifstream in(path, std::ios::binary);
-        bytes.assign(std::istreambuf_iterator<char>(in), {});
-    }
+    std::vector<uint8_t> bytes = file_bytes(path);
     ASSERT_GT(bytes.size(), 26u);
     ASSERT_EQ(bytes[0], 'B');
     ASSERT_EQ(bytes[1], 'M');
     // BITMAPINFOHEADER width, little-endian at byte 18: 83,886,080 (0x05000000).
     bytes[18] = 0x00, bytes[19] = 0x00, bytes[20] = 0x00, bytes[21] = 0x05;
-    {
-        std::ofstream out(path, std::ios::binary | std::ios::trunc);
-        out.write(reinterpret_cast<const char*>(bytes.data()), std::streamsize(bytes.size()));
-    }
+    overwrite(path, bytes);
     try {
         io::read_image(path);
         FAIL() << "a BMP 83886080 pixels wide was read";

@@ -11,8 +11,7 @@ void CoverageLayers::set_primary(size_t p, const Surface& surface) {
     primary_triangle_[p] = surface.triangle;
     primary_depth_[p] = surface.depth;
     primary_coverage_[p] = uint8_t(surface.count);
-    if (positions_)
-        primary_centroid_[p] = int(surface.count) == samples_ ? glm::vec2(0.0f) : positions_[surface.first];
+    if (positions_) primary_centroid_[p] = centroid_of(surface);
     if (positions_ && samples_ <= 16) primary_mask_[p] = surface.mask;
 }
 
@@ -94,7 +93,7 @@ void CoverageLayers::build_planes(const TileRect& rect, int samples, const glm::
     std::fill_n(primary_coverage_.data(), area, uint8_t(samples));
     if (positions) std::fill_n(primary_centroid_.data(), area, glm::vec2(0.0f));
     if (positions && samples <= 16)
-        std::fill_n(primary_mask_.data(), area, samples >= 16 ? uint16_t(0xFFFF) : uint16_t((1u << samples) - 1u));
+        std::fill_n(primary_mask_.data(), area, all_samples(samples));
     const uint8_t* m = mixed_.data();
     uint64_t covered = 0;
     for (size_t p = 0; p < area; ++p) covered += !m[p] & (t0[p] != kNoTriangle);
@@ -117,23 +116,15 @@ void CoverageLayers::build_planes(const TileRect& rect, int samples, const glm::
 
 void CoverageLayers::build_uniform(const TileRect& rect, int samples, const glm::vec2* positions, uint32_t triangle,
                                    float depth) {
-    rect_ = rect;
-    samples_ = samples;
-    positions_ = positions;
+    start(rect, samples, positions);
     const size_t area = size_t(rect.width()) * size_t(rect.height());
-    layers_ = area ? 1 : 0;
     covered_ = triangle != kNoTriangle ? area : 0;
-    primary_triangle_.assign(area, triangle);
-    primary_depth_.assign(area, depth);
-    primary_coverage_.assign(area, uint8_t(samples));
-    if (positions) primary_centroid_.assign(area, glm::vec2(0.0f));
-    if (positions && samples <= 16)
-        primary_mask_.assign(area, samples >= 16 ? uint16_t(0xFFFF) : uint16_t((1u << samples) - 1u));
-    others_.clear();
+    std::fill_n(primary_triangle_.data(), area, triangle);
+    std::fill_n(primary_depth_.data(), area, depth);
+    std::fill_n(primary_coverage_.data(), area, uint8_t(samples));
+    if (positions) std::fill_n(primary_centroid_.data(), area, glm::vec2(0.0f));
+    if (positions && samples <= 16) std::fill_n(primary_mask_.data(), area, all_samples(samples));
     first_.assign(area + 1, 0);
-    sample_depth_ = nullptr;
-    extent_.clear();
-    mixed_pixels_.clear();
 }
 
 TileRect CoverageLayers::layer_rect(int j) const {
@@ -156,12 +147,6 @@ Tile CoverageLayers::layer(int j, const glm::vec4& clear, glm::vec4* out, size_t
         for (size_t y = 0; y < size_t(layer_rect_.height()); ++y) std::fill_n(out + y * stride, w, clear);
         tile.colour = out;
         tile.colour_stride = stride;
-    } else {
-        colour_.assign(area, clear);
-        tile.colour = colour_.data();
-        tile.colour_stride = w;
-    }
-    if (j == 0) {
         // Handed out as built: passes may change the ids and depths (a marched surface in
         // front), which matters to nothing after them but the resolve of this layer.
         tile.triangle = primary_triangle_.data();
@@ -170,6 +155,9 @@ Tile CoverageLayers::layer(int j, const glm::vec4& clear, glm::vec4* out, size_t
         tile.centroid = positions_ ? primary_centroid_.data() : nullptr;
         if (masks) tile.sample_mask = primary_mask_.data();
     } else {
+        colour_.assign(area, clear);
+        tile.colour = colour_.data();
+        tile.colour_stride = w;
         triangle_.resize(area);
         depth_.resize(area);
         coverage_.resize(area);
@@ -192,7 +180,7 @@ Tile CoverageLayers::layer(int j, const glm::vec4& clear, glm::vec4* out, size_t
             triangle_[q] = s.triangle;
             depth_[q] = s.depth;
             coverage_[q] = uint8_t(s.count);
-            if (positions_) centroid_[q] = int(s.count) == samples_ ? glm::vec2(0.0f) : positions_[s.first];
+            if (positions_) centroid_[q] = centroid_of(s);
             if (masks) mask_[q] = s.mask;
         }
         tile.triangle = triangle_.data();
@@ -224,10 +212,9 @@ void CoverageLayers::accumulate() {
     // covered, with a power-of-two sample count) keeps it. A layer j > 0 adds where it holds
     // a surface. The pixels left alone (most of layer 0, most of the others' rects) are
     // skipped eight coverage bytes at a time.
-    const bool whole_is_one = float(samples_) * share == 1.0f;
-    const uint8_t skip = layer_ == 0 ? (whole_is_one ? uint8_t(samples_) : uint8_t(0)) : uint8_t(0);
+    const bool can_skip = layer_ != 0 || float(samples_) * share == 1.0f;
+    const uint8_t skip = layer_ == 0 ? uint8_t(samples_) : uint8_t(0);  // the coverage left alone
     const uint64_t skip_word = uint64_t(skip) * 0x0101010101010101ull;
-    const bool can_skip = layer_ != 0 || whole_is_one;
     for (size_t y = 0; y < size_t(r.height()); ++y) {
         const uint8_t* coverage = layer_coverage_ + y * w;
         const glm::vec4* colour = layer_ == 0 ? nullptr : colour_.data() + y * w;

@@ -98,6 +98,15 @@ private:
     // Pixel p whose samples (ids triangle[s * step], depths depth[s * step]) show more than
     // one surface: its surfaces listed, layer 0 the one with the most samples.
     void add_mixed_pixel(size_t p, const uint32_t* triangle, const float* depth, size_t step);
+    // The sample mask of a pixel wholly covered by one surface (the first 16 samples).
+    static uint16_t all_samples(int samples) {
+        return samples >= 16 ? uint16_t(0xFFFF) : uint16_t((1u << samples) - 1u);
+    }
+    // Where a surface is evaluated (Tile::centroid): the centre when it covers every sample,
+    // else its first sample.
+    glm::vec2 centroid_of(const Surface& surface) const {
+        return int(surface.count) == samples_ ? glm::vec2(0.0f) : positions_[surface.first];
+    }
     // The part of the rect layer j > 0 covers (see layer()).
     TileRect layer_rect(int j) const;
 
@@ -140,7 +149,7 @@ template <class SampleAt>
 void CoverageLayers::build(const TileRect& rect, int samples, const glm::vec2* positions,
                            const SampleAt& sample_at) {
     start(rect, samples, positions);
-    const uint16_t all = samples >= 16 ? uint16_t(0xFFFF) : uint16_t((1u << samples) - 1u);
+    const uint16_t all = all_samples(samples);
     uint32_t triangle[256];
     float depth[256];
     size_t p = 0;
