@@ -278,7 +278,8 @@ TEST(RasterPipeline, DepthOnlyGivesTheSameDepth) {
 }
 
 // Every pixel is visited by exactly one pass call, which sees the final visibility; the colour
-// it writes reaches the frame.
+// it writes reaches the frame. Kept in the tiles' rows (RasterOptions::tile_visibility_rows),
+// the passes see the same visibility and the frame's is left empty.
 TEST(RasterPipeline, TilePassesSeeEveryPixelOnce) {
     const int w = 150, h = 97;
     const Mesh mesh = workloads::to_world(workloads::random_triangles(3, 400, w, h, 30.0f), kIdentity, w, h);
@@ -297,13 +298,28 @@ TEST(RasterPipeline, TilePassesSeeEveryPixelOnce) {
     std::vector<glm::vec4> color;
     pipeline::RasterOptions options;
     options.tile_size = 32;
-    pipeline::Rasterizer().render(mesh, kIdentity, pipeline::Viewport(w, h), options, vis, passes, &color);
+    pipeline::Rasterizer rasterizer;
+    rasterizer.render(mesh, kIdentity, pipeline::Viewport(w, h), options, vis, passes, &color);
     for (int y = 0; y < h; ++y)
         for (int x = 0; x < w; ++x) {
             const size_t i = size_t(y) * w + x;
             ASSERT_EQ(visits[i].load(), 1);
             ASSERT_EQ(color[i], glm::vec4(float(vis.triangle[i] % 7), vis.depth[i], float(x), float(y)));
         }
+
+    options.frame_visibility = false;
+    options.tile_visibility_rows = true;
+    for (int tile : {32, 128}) {  // partial tiles at the right and bottom edges, and one tile
+        options.tile_size = tile;
+        for (std::atomic<int>& v : visits) v = 0;
+        VisibilityBuffer kept;
+        std::vector<glm::vec4> in_tiles;
+        for (int frame = 0; frame < 2; ++frame)  // the second reuses the threads' row buffers
+            rasterizer.render(mesh, kIdentity, pipeline::Viewport(w, h), options, kept, passes, &in_tiles);
+        EXPECT_TRUE(kept.triangle.empty() && kept.depth.empty());
+        for (size_t i = 0; i < visits.size(); ++i) ASSERT_EQ(visits[i].load(), 2) << "tile " << tile;
+        EXPECT_TRUE(in_tiles == color) << "tile " << tile;
+    }
 }
 
 // Transparent triangles stay out of the visibility buffer and reach the blend callback, in

@@ -36,6 +36,12 @@ struct RasterOptions {
     // the passes produce the output themselves (tessera raster's shading without --out-id or
     // --out-depth). Single-sampled renders with triangle ids only.
     bool frame_visibility = true;
+    // With frame_visibility false: the passes get each tile's visibility row-major after all
+    // (TileContext::triangle/depth, row stride tile_size; TileContext::stamps null), in a
+    // per-thread tile-sized buffer the next tile reuses, which they may also write (marched
+    // surfaces' depths). For passes written against rows that read nothing outside their
+    // tile: the frame renderer's, unless a pass reads across tiles afterwards (outlines).
+    bool tile_visibility_rows = false;
     // Multisampled: also keep every sample in VisibilityBuffer::sample_triangle/sample_depth
     // (tests, --out-id); costs 8 bytes per sample of frame memory traffic.
     bool keep_samples = false;

@@ -33,6 +33,9 @@ struct ChunkScratch {
 // Per-thread storage of the tile stage, reused across tiles and frames.
 struct TileScratch {
     TileBuffers buffers;
+    // The tile's visibility row-major, when it stays in the tile (RasterOptions::tile_visibility_rows).
+    std::vector<uint32_t> triangle_rows;
+    std::vector<float> depth_rows;
     std::vector<glm::vec4> color;
     std::vector<Fragment> fragments;
     CoverageLayers layers;  // multisampled renders
@@ -247,21 +250,34 @@ void Rasterizer::render(const Mesh& mesh, const glm::mat4& view_projection, cons
         }
 
         if (!frame_visibility) {
-            // The visibility stays in the tile buffers: the passes read them there, then
-            // they are cleared for the next tile.
+            // The visibility stays in the tile: the passes read it from the tile buffers, or
+            // from their rows in the thread's scratch, in cache either way; then the buffers
+            // are cleared for the next tile (flush() clears what it moves).
             if (stats) visible_pixels += buffers.covered_pixels(w, h);
+            const bool rows = options.tile_visibility_rows && run_passes;
+            if (rows) {
+                const size_t area = size_t(grid.size) * size_t(grid.size);
+                scratch.triangle_rows.resize(area);
+                scratch.depth_rows.resize(area);
+                buffers.flush(w, h, scratch.triangle_rows.data(), scratch.depth_rows.data(), size_t(grid.size), false);
+            }
             if (run_passes) {
                 const auto pass_start = Clock::now();
                 TileWork work{&s.chunks, &source, tile, &scratch.fragments};
                 Tile tile_part;
                 tile_part.rect = rect;
+                if (rows) {
+                    tile_part.triangle = scratch.triangle_rows.data();
+                    tile_part.depth = scratch.depth_rows.data();
+                    tile_part.stride = size_t(grid.size);
+                }
                 if (options.tile_color) {
                     scratch.color.assign(size_t(grid.size) * grid.size, options.clear_color);
                     tile_part.colour = scratch.color.data();
                     tile_part.colour_stride = size_t(grid.size);
                 }
                 TileContext context = context_for(tile_part, work);
-                context.stamps = &buffers;
+                if (!rows) context.stamps = &buffers;
                 for (const TilePass& pass : passes) pass(context);
                 if (color)
                     for (int y = 0; y < h; ++y)
@@ -269,7 +285,7 @@ void Rasterizer::render(const Mesh& mesh, const glm::mat4& view_projection, cons
                                     scratch.color.data() + size_t(y) * grid.size, size_t(w) * sizeof(glm::vec4));
                 if (stats) pass_ns += std::chrono::duration_cast<std::chrono::nanoseconds>(Clock::now() - pass_start).count();
             }
-            buffers.clear(grid.size, samples);
+            if (!rows) buffers.clear(grid.size, samples);
             return;
         }
 

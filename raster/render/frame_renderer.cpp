@@ -634,6 +634,12 @@ void FrameRenderer::Impl::render_region(const FrameState& frame, const Region& r
         pipeline::RasterOptions options;
         options.transparent = frame.transparent;
         options.samples = samples;
+        // One sample: the passes read each tile's visibility in cache, and the frame's is not
+        // written, unless the outlines read it across tiles afterwards.
+        if (samples == 1 && !shade::any_outlined(scene.scene.materials)) {
+            options.frame_visibility = false;
+            options.tile_visibility_rows = true;
+        }
         // 8-bit output: each tile is encoded from the rasterizer's colour tile (its clear
         // colour where the passes did not run; multisampled, once its layers are resolved), and
         // no float frame is written.

@@ -26,36 +26,46 @@ glm::vec3 background_radiance(const scene::Background& background, glm::vec3 dir
 simd::V3<simd::vfloat> background_radiance_lanes(const scene::Background& background,
                                                  const simd::V3<simd::vfloat>& direction);
 
-// Writes the background into the pixels of `tile` that `empty(x, y)` picks, kLanes pixels of
-// a row at a time: `radiance(x0, y)` gives the colours of pixels x0 .. x0 + kLanes - 1 (asked
-// only for groups that hold an empty pixel), alpha 1. The per-pixel background passes of the
-// rasterizer (shade_background) and of ray marching (march::BackgroundPass) are this loop.
+// Writes the background into the pixels of `tile` that `empty` picks, kLanes pixels of a row
+// at a time: `empty(x0, y, n)` gives the mask of the pixels x0 + i (i < n) to fill, and
+// `radiance(x0, y)` the colours of pixels x0 .. x0 + kLanes - 1 (asked only for groups that
+// hold an empty pixel), alpha 1. The per-pixel background passes of the rasterizer
+// (shade_background) and of ray marching (march::BackgroundPass) are this loop.
 template <class Empty, class Radiance>
 void fill_background_lanes(const Tile& tile, Empty empty, Radiance radiance) {
     constexpr int N = simd::kLanes;
     static_assert(N <= 32, "one bit per lane");
+    constexpr uint32_t kAll = N == 32 ? ~0u : (1u << N) - 1u;
     alignas(64) float r[N], g[N], b[N];
     for (int y = tile.rect.y0; y < tile.rect.y1; ++y)
         for (int x0 = tile.rect.x0; x0 < tile.rect.x1; x0 += N) {
             const int n = std::min(N, tile.rect.x1 - x0);
-            uint32_t mask = 0;
-            for (int i = 0; i < n; ++i)
-                if (empty(x0 + i, y)) mask |= 1u << i;
+            const uint32_t mask = empty(x0, y, n);
             if (!mask) continue;
             const simd::V3<simd::vfloat> c = radiance(x0, y);
+            glm::vec4* out = &tile.colour_at(x0, y);
+            if (mask == kAll) {  // all of them (the open sky): the lanes interleaved as they are
+                simd::store_interleaved4(&out->r, c.x, c.y, c.z, simd::vfloat(1.0f));
+                continue;
+            }
             c.x.store(r);
             c.y.store(g);
             c.z.store(b);
-            glm::vec4* out = &tile.colour_at(x0, y);
-            if (n == N && mask == (N == 32 ? ~0u : (1u << N) - 1u)) {
-                // All of them (the open sky): one interleaving loop, which the compiler
-                // vectorises, instead of a test and a store per pixel.
-                for (int i = 0; i < N; ++i) out[i] = glm::vec4(r[i], g[i], b[i], 1.0f);
-                continue;
-            }
             for (int i = 0; i < n; ++i)
                 if (mask >> i & 1u) out[i] = glm::vec4(r[i], g[i], b[i], 1.0f);
         }
+}
+
+// The mask of fill_background_lanes' `empty` from a per-pixel test: `whole(x0, y)` gives the
+// mask of the kLanes pixels of a whole group (tested in lanes), `one(x, y)` tests a pixel of
+// the group cut by the tile's right edge (whose row may end before x0 + kLanes).
+template <class Whole, class One>
+uint32_t empty_mask(int x0, int y, int n, Whole whole, One one) {
+    if (n == simd::kLanes) return whole(x0, y);
+    uint32_t mask = 0;
+    for (int i = 0; i < n; ++i)
+        if (one(x0 + i, y)) mask |= 1u << i;
+    return mask;
 }
 
 }  // namespace tessera::shade

@@ -23,7 +23,51 @@ const texture::Texture* texture_of(const scene::Scene& scene, int32_t index) {
     return index == scene::kNoTexture ? nullptr : &scene.textures[size_t(index)];
 }
 
+// What fill_lanes broadcasts for a triangle besides its corners' attributes.
+struct TriangleSetup {
+    uint32_t triangle = kNoTriangle;
+    float drawn = 0.0f;  // FrameShading::drawn_side
+    pipeline::PerspectiveBarycentrics barycentrics;
+};
+
+constexpr uint32_t kAllLanes = kLanes == 32 ? ~0u : (1u << kLanes) - 1u;
+
+// The kernel's colours to kLanes consecutive pixels, alpha 1 (an opaque surface covers its
+// pixel whatever its material's opacity).
+void put_opaque(glm::vec4* out, const Lanes& lanes) {
+    using simd::vfloat;
+    simd::store_interleaved4(&out->r, vfloat::load(lanes.out[0]), vfloat::load(lanes.out[1]), vfloat::load(lanes.out[2]),
+                             vfloat(1.0f));
+}
+
 }  // namespace
+
+// The set-ups of the triangles a tile shows, direct-mapped by the id's low bits: a triangle
+// crosses several rows of a tile, and each row's groups would otherwise redo its set-up (three
+// cross products in double precision) and drawn side. Valid for one FrameShading: start()
+// empties it, at the start of each tile pass and shade() call.
+struct FrameShading::TriangleSetups {
+    static constexpr uint32_t kSlots = 1024;
+    std::vector<TriangleSetup> slot = std::vector<TriangleSetup>(kSlots);
+    std::vector<uint32_t> used;
+
+    void start() {
+        for (const uint32_t s : used) slot[s].triangle = kNoTriangle;
+        used.clear();
+    }
+    const TriangleSetup& of(const FrameShading& shading, uint32_t triangle) {
+        TriangleSetup& entry = slot[triangle & (kSlots - 1)];
+        if (entry.triangle == triangle) return entry;
+        if (entry.triangle == kNoTriangle) used.push_back(triangle & (kSlots - 1));
+        const uint32_t* corner = &shading.baked_.mesh.indices[3 * size_t(triangle)];
+        entry.triangle = triangle;
+        entry.barycentrics = pipeline::PerspectiveBarycentrics::from_clip(
+            shading.clip_[corner[0]], shading.clip_[corner[1]], shading.clip_[corner[2]], shading.state_.width,
+            shading.state_.height);
+        entry.drawn = shading.drawn_side(triangle);
+        return entry;
+    }
+};
 
 FrameShading::FrameShading(const scene::BakedScene& baked, const scene::Scene& scene, RenderState state)
     : baked_(baked), scene_(scene), state_(std::move(state)), eye_(state_.camera.eye) {
@@ -188,6 +232,8 @@ void FrameShading::shade_with(std::span<const CoveredPixel> pixels, std::span<gl
     ctx.eye = eye_;
     Lanes lanes;
     uint32_t whole = kNoTriangle;  // see fill_lanes
+    thread_local TriangleSetups setups;
+    setups.start();
     for (size_t mat = 0; mat < material_count; ++mat) {
         const scene::Material& material = scene_.materials[mat];
         ctx.material = &material;
@@ -202,7 +248,7 @@ void FrameShading::shade_with(std::span<const CoveredPixel> pixels, std::span<gl
             if constexpr (!std::is_same_v<F, float>) {
                 CoveredPixel lane_pixel[kLanes];
                 for (int lane = 0; lane < kLanes; ++lane) lane_pixel[lane] = pixels[order[start + size_t(lane < n ? lane : 0)]];
-                fill_lanes(lane_pixel, needs_uv, needs_colour, lanes, whole);
+                fill_lanes(lane_pixel, needs_uv, needs_colour, lanes, whole, setups);
                 shade::shade_lanes<F>(ctx, lanes, 0);
                 for (int l = 0; l < n; ++l)
                     out[order[start + size_t(l)]] = {lanes.out[0][l], lanes.out[1][l], lanes.out[2][l], lanes.out[3][l]};
@@ -254,37 +300,30 @@ void FrameShading::shade_with(std::span<const CoveredPixel> pixels, std::span<gl
 }
 
 void FrameShading::fill_lanes(const CoveredPixel* lane_pixel, bool needs_uv, bool needs_colour, Lanes& lanes,
-                              uint32_t& whole) const {
+                              uint32_t& whole, TriangleSetups& setups) const {
     // The lanes in runs of one triangle (all of them, on triangles wider than the lanes): each
     // run's corner attributes are broadcast to its lanes with a masked vector store per
     // attribute instead of being written lane by lane; the values are the lane-by-lane path's.
     using F = simd::vfloat;
     const Mesh& mesh = baked_.mesh;
+    // The pixel centres, float(x) + 0.5 and float(y) + 0.5, in lanes: the three int32 fields of
+    // the pixels deinterleaved by one load each.
+    static_assert(sizeof(CoveredPixel) == 3 * sizeof(int32_t), "x, y, triangle: three packed int32");
+    simd::vint column, row, triangles;
+    simd::load_interleaved3(&lane_pixel[0].x, column, row, triangles);
+    (simd::to_float(column) + F(0.5f)).store(lanes.x);
+    (simd::to_float(row) + F(0.5f)).store(lanes.y);
     // A triangle wider than the lanes covers group after group: its corner attributes, the
     // side it was drawn from and the barycentric set-up (with its divisions) are already in
     // every lane from the group before, so only the pixel centres change. The triangle decides the material, hence
     // needs_uv and needs_colour, so what the lanes hold is what a fill would write.
-    bool same = whole != kNoTriangle;
-    for (int lane = 0; same && lane < kLanes; ++lane) same = lane_pixel[lane].triangle == whole;
-    if (same) {
-        for (int lane = 0; lane < kLanes; ++lane) {
-            lanes.x[lane] = float(lane_pixel[lane].x) + 0.5f;
-            lanes.y[lane] = float(lane_pixel[lane].y) + 0.5f;
-        }
-        return;
-    }
+    if (whole != kNoTriangle && simd::all(triangles == simd::vint(int32_t(whole)))) return;
     whole = kNoTriangle;
-    uint32_t setup_for = kNoTriangle;
-    pipeline::PerspectiveBarycentrics setup{};
-    float drawn = 0.0f;
     int lane = 0;
     while (lane < kLanes) {
         const uint32_t triangle = lane_pixel[lane].triangle;
         const int first = lane;
-        for (; lane < kLanes && lane_pixel[lane].triangle == triangle; ++lane) {
-            lanes.x[lane] = float(lane_pixel[lane].x) + 0.5f;
-            lanes.y[lane] = float(lane_pixel[lane].y) + 0.5f;
-        }
+        while (lane < kLanes && lane_pixel[lane].triangle == triangle) ++lane;
         const simd::vint index = simd::lane_index();
         const simd::vmask run = (simd::vint(first) < index + simd::vint(1)) & (index < simd::vint(lane));
         const bool whole_run = first == 0 && lane == kLanes;
@@ -293,19 +332,14 @@ void FrameShading::fill_lanes(const CoveredPixel* lane_pixel, bool needs_uv, boo
             else simd::store_masked(lanes_of, run, F(v));
         };
         const uint32_t* corner = &mesh.indices[3 * size_t(triangle)];
-        if (triangle != setup_for) {
-            setup = pipeline::PerspectiveBarycentrics::from_clip(clip_[corner[0]], clip_[corner[1]], clip_[corner[2]],
-                                                                 state_.width, state_.height);
-            drawn = drawn_side(triangle);
-            setup_for = triangle;
-        }
-        fill(lanes.drawn, drawn);
+        const TriangleSetup& setup = setups.of(*this, triangle);
+        fill(lanes.drawn, setup.drawn);
         for (int k = 0; k < 3; ++k) {
             const uint32_t vi = corner[k];
             const glm::vec3 p = mesh.positions[vi];
             const glm::vec3 nrm = mesh.normals.empty() ? glm::vec3(0.0f) : mesh.normals[vi];
             for (int a = 0; a < 3; ++a) {
-                fill(lanes.bary[k][a], setup.e[k][a]);
+                fill(lanes.bary[k][a], setup.barycentrics.e[k][a]);
                 fill(lanes.pos[k][a], p[a]);
                 fill(lanes.nrm[k][a], nrm[a]);
             }
@@ -335,6 +369,8 @@ void FrameShading::shade_tile_surfaces(const Tile& tile) const {
     bool needs_uv = false, needs_colour = false;
     Lanes lanes;
     uint32_t whole = kNoTriangle;  // see fill_lanes
+    thread_local TriangleSetups setups;
+    setups.start();
     CoveredPixel lane_pixel[kLanes];
     // Triangle ids at or above this have no material (kNoTriangle included: negative as int32).
     const int32_t material_limit = int32_t(std::min<size_t>(triangle_material.size(), size_t(INT32_MAX)));
@@ -363,6 +399,15 @@ void FrameShading::shade_tile_surfaces(const Tile& tile) const {
                 const simd::vmask on = simd::andnot(id == simd::vint(int32_t(kNoTriangle)), simd::vmask(true));
                 covered = simd::bits(on);
                 if (covered == 0) continue;
+                if (whole != kNoTriangle && simd::all(id == simd::vint(int32_t(whole)))) {
+                    // The whole group shows the triangle whose attributes fill the lanes
+                    // (fill_lanes' `whole`, of the material in ctx): only the centres change.
+                    (simd::to_float(simd::vint(x0) + simd::lane_index()) + simd::vfloat(0.5f)).store(lanes.x);
+                    simd::vfloat(float(y) + 0.5f).store(lanes.y);
+                    shade::shade_lanes<simd::vfloat>(ctx, lanes, 0);
+                    put_opaque(&tile.colour_at(x0, y), lanes);
+                    continue;
+                }
                 const simd::vmask known = on & (id >= simd::vint(0)) & (id < simd::vint(material_limit));
                 const simd::vint looked = simd::bits_of(simd::gather(material_table, simd::select(known, id, simd::vint(0))));
                 const simd::vint m = simd::select(known, looked, simd::vint(int32_t(material_count)));
@@ -404,10 +449,14 @@ void FrameShading::shade_tile_surfaces(const Tile& tile) const {
                 needs_colour = m.model == scene::ShadingModel::gouraud;
                 ctx_for = material;
             }
-            fill_lanes(lane_pixel, needs_uv, needs_colour, lanes, whole);
+            fill_lanes(lane_pixel, needs_uv, needs_colour, lanes, whole, setups);
             shade::shade_lanes<simd::vfloat>(ctx, lanes, 0);
             // Opaque surfaces cover the pixel whatever their material's opacity.
             glm::vec4* out = &tile.colour_at(x0, y);
+            if (covered == kAllLanes) {
+                put_opaque(out, lanes);
+                continue;
+            }
             for (uint32_t c = covered; c; c &= c - 1) {
                 const int i = std::countr_zero(c);
                 out[i] = glm::vec4(lanes.out[0][i], lanes.out[1][i], lanes.out[2][i], 1.0f);
@@ -434,8 +483,18 @@ void shade_tile(const FrameShading& shading, const Tile& tile) {
 }
 
 void shade_background(const FrameShading& shading, const Tile& tile) {
+    const auto one = [&](int x, int y) { return tile.active(x, y) && tile.triangle_at(x, y) == kNoTriangle; };
+    const auto whole = [&](int x0, int y) {
+        uint32_t mask = 0;
+        if (tile.coverage) {  // a layer's pixels it does not hold are left alone
+            for (int i = 0; i < kLanes; ++i) mask |= uint32_t(one(x0 + i, y)) << i;
+            return mask;
+        }
+        const simd::vint id = simd::vint::load_unaligned(reinterpret_cast<const int32_t*>(&tile.triangle_at(x0, y)));
+        return simd::bits(id == simd::vint(int32_t(kNoTriangle)));
+    };
     fill_background_lanes(
-        tile, [&](int x, int y) { return tile.active(x, y) && tile.triangle_at(x, y) == kNoTriangle; },
+        tile, [&](int x0, int y, int n) { return empty_mask(x0, y, n, whole, one); },
         [&](int x0, int y) { return shading.background_lanes(x0, y); });
 }
 

@@ -97,8 +97,11 @@ private:
     // repeat a pixel of the group), in runs of one triangle. `whole`: the triangle whose
     // attributes fill every lane of `lanes` (kNoTriangle: none), kept by the caller from one
     // group to the next; a group all of that triangle only gets its pixel centres written.
+    // `setups` holds the barycentric set-ups and drawn sides already computed for this object
+    // (TriangleSetups, frame_shading.cpp).
+    struct TriangleSetups;
     void fill_lanes(const CoveredPixel* lane_pixel, bool needs_uv, bool needs_colour, struct Lanes& lanes,
-                    uint32_t& whole) const;
+                    uint32_t& whole, TriangleSetups& setups) const;
 
     const scene::BakedScene& baked_;
     const scene::Scene& scene_;

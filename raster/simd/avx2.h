@@ -119,6 +119,21 @@ inline void store_masked(uint32_t* p, vmask m, vint a) {
     select(m, a, vint::load(q)).store(q);
 }
 
+// Lane i of a, b, c, d to p[4i .. 4i + 3] (unaligned), as in avx512.h: the unpacks leave lane
+// 4j + k's quad in half j of u_k; the halves are then paired.
+inline void store_interleaved4(float* p, vfloat a, vfloat b, vfloat c, vfloat d) {
+    const auto pd = [](__m256 v) { return _mm256_castps_pd(v); };
+    const auto ps = [](__m256d v) { return _mm256_castpd_ps(v); };
+    const __m256d t0 = pd(_mm256_unpacklo_ps(a.v, b.v)), t1 = pd(_mm256_unpackhi_ps(a.v, b.v));
+    const __m256d t2 = pd(_mm256_unpacklo_ps(c.v, d.v)), t3 = pd(_mm256_unpackhi_ps(c.v, d.v));
+    const __m256 u0 = ps(_mm256_unpacklo_pd(t0, t2)), u1 = ps(_mm256_unpackhi_pd(t0, t2));
+    const __m256 u2 = ps(_mm256_unpacklo_pd(t1, t3)), u3 = ps(_mm256_unpackhi_pd(t1, t3));
+    _mm256_storeu_ps(p, _mm256_permute2f128_ps(u0, u1, 0x20));
+    _mm256_storeu_ps(p + 8, _mm256_permute2f128_ps(u2, u3, 0x20));
+    _mm256_storeu_ps(p + 16, _mm256_permute2f128_ps(u0, u1, 0x31));
+    _mm256_storeu_ps(p + 24, _mm256_permute2f128_ps(u2, u3, 0x31));
+}
+
 // Stamp layout to rows (simd.h): `stamps` holds kStampH horizontally adjacent 4x2 stamps
 // (aligned, 16 values); row r of the 8 x 2 pixels they cover is written to dst + r * stride
 // (unaligned), for r < rows. Row r of a stamp is its 128-bit half r.

@@ -124,6 +124,28 @@ inline void store_masked(uint32_t* p, vmask m, vint a) { _mm512_mask_store_epi32
 template <int P>
 inline __m512i blocks(__m512i x, __m512i y) { return _mm512_mask_shuffle_i32x4(x, kAllLanes, x, y, P); }
 
+// Lane i of a, b, c, d to p[4i .. 4i + 3] (unaligned): kLanes RGBA pixels from their channels.
+// Two 4x4 transposes: the unpacks leave lane 4j + k's four values in 128-bit block j of u_k,
+// then a transpose of the 128-bit blocks puts lanes 4j .. 4j + 3 side by side.
+inline void store_interleaved4(float* p, vfloat a, vfloat b, vfloat c, vfloat d) {
+    const __m512 none = _mm512_setzero_ps();
+    const __m512d zero = _mm512_setzero_pd();
+    const auto pd = [](__m512 v) { return _mm512_castps_pd(v); };
+    const __m512d t0 = pd(_mm512_mask_unpacklo_ps(none, kAllLanes, a.v, b.v));
+    const __m512d t1 = pd(_mm512_mask_unpackhi_ps(none, kAllLanes, a.v, b.v));
+    const __m512d t2 = pd(_mm512_mask_unpacklo_ps(none, kAllLanes, c.v, d.v));
+    const __m512d t3 = pd(_mm512_mask_unpackhi_ps(none, kAllLanes, c.v, d.v));
+    const auto si = [](__m512d v) { return _mm512_castpd_si512(v); };
+    const __m512i u0 = si(_mm512_mask_unpacklo_pd(zero, 0xFF, t0, t2)), u1 = si(_mm512_mask_unpackhi_pd(zero, 0xFF, t0, t2));
+    const __m512i u2 = si(_mm512_mask_unpacklo_pd(zero, 0xFF, t1, t3)), u3 = si(_mm512_mask_unpackhi_pd(zero, 0xFF, t1, t3));
+    const __m512i v0 = blocks<0x44>(u0, u1), v1 = blocks<0x44>(u2, u3);  // u0 b0 b1, u1 b0 b1 / u2, u3
+    const __m512i v2 = blocks<0xEE>(u0, u1), v3 = blocks<0xEE>(u2, u3);  // blocks 2, 3 of the same
+    _mm512_storeu_si512(p, blocks<0x88>(v0, v1));
+    _mm512_storeu_si512(p + 16, blocks<0xDD>(v0, v1));
+    _mm512_storeu_si512(p + 32, blocks<0x88>(v2, v3));
+    _mm512_storeu_si512(p + 48, blocks<0xDD>(v2, v3));
+}
+
 // Stamp layout to rows (simd.h): `stamps` holds kStampH horizontally adjacent 4x4 stamps
 // (aligned, 64 values); row r of the 16 x 4 pixels they cover is written to dst + r * stride
 // (unaligned), for r < rows. A 4x4 transpose of 128-bit blocks: block r of stamp s is row r.

@@ -94,6 +94,14 @@ inline void store_low_bytes(uint8_t* p, vint a) { p[0] = uint8_t(a.v); }
 
 // The three streams of 3 * kLanes consecutive values: a[i] = p[3i], b[i] = p[3i + 1],
 // c[i] = p[3i + 2].
+// a, b, c, d to p[0 .. 3]: one RGBA pixel from its channels.
+inline void store_interleaved4(float* p, vfloat a, vfloat b, vfloat c, vfloat d) {
+    p[0] = a.v;
+    p[1] = b.v;
+    p[2] = c.v;
+    p[3] = d.v;
+}
+
 inline void load_interleaved3(const int32_t* p, vint& a, vint& b, vint& c) {
     a = vint(p[0]);
     b = vint(p[1]);

@@ -38,5 +38,8 @@ inline vint stamp_y() {
 //
 // stream_copy(dst, src, n) / stream_fence(): a copy whose stores bypass the caches (for
 // output nothing reads soon: they save reading each destination line before writing it).
+//
+// store_interleaved4(p, a, b, c, d): lane i of the four to p[4i .. 4i + 3], the channels of
+// kLanes RGBA float pixels stored as a tile's colour buffer keeps them (glm::vec4 per pixel).
 
 }  // namespace tessera::simd
