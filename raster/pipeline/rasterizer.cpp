@@ -33,7 +33,6 @@ struct ChunkScratch {
 // Per-thread storage of the tile stage, reused across tiles and frames.
 struct TileScratch {
     TileBuffers buffers;
-    TileBands bands;
     std::vector<glm::vec4> color;
     std::vector<Fragment> fragments;
     CoverageLayers layers;  // multisampled renders
@@ -205,15 +204,13 @@ void Rasterizer::render(const Mesh& mesh, const glm::mat4& view_projection, cons
         // Else flush() or the multisampled path below cleared them.
         if (buffers.size != grid.size || buffers.samples != samples) buffers.clear(grid.size, samples);
         bool drawn = false;
-        TileBands& bands = scratch.bands;
-        bands.begin(rect, buffers, options.depth_only);
         for (const ChunkBins& chunk : s.chunks)
             for_each_setup(chunk, tile, source, [&](const TriangleSetup& t) {
                 if (t.transparent) return;
                 drawn = true;
-                bands.add(t);
+                if (options.depth_only) rasterize_depth(t, rect, buffers);
+                else rasterize_opaque(t, rect, buffers);
             });
-        bands.finish();
 
         const int w = rect.width(), h = rect.height();
         const size_t origin = size_t(rect.y0) * viewport.width + rect.x0;

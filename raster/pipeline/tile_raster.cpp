@@ -263,16 +263,15 @@ int64_t edge_at(const TriangleSetup& t, int i, int x, int y) {
     return t.f[i] + int64_t(t.dx[i]) * (y - t.miny) - int64_t(t.dy[i]) * (x - t.minx);
 }
 
-// Traverses the part of triangle `t` inside `part` (within `tile`, whose buffers the sink's
-// indices address), calling sink as traverse_stamps does, or,
+// Traverses the part of triangle `t` inside `tile`, calling sink as traverse_stamps does, or,
 // with `samples` (multisampling), as traverse_sample_stamps does. kOnEdge: some edge of `t`
 // may hold samples exactly (holds_centres(), holds_sample(); rare), whose lanes read the depth
 // step there and on which a block is accepted whole only where F > 0.
 template <bool kMulti, bool kOnEdge, class Sink>
-inline void traverse_with(const TriangleSetup& t, const TileRect& tile, const TileRect& part, int tile_size,
-                          const SampleLanes* samples, Sink&& sink) {
-    const int x0 = std::max<int>(t.minx, part.x0), x1 = std::min<int>(t.maxx, part.x1 - 1);
-    const int y0 = std::max<int>(t.miny, part.y0), y1 = std::min<int>(t.maxy, part.y1 - 1);
+inline void traverse_with(const TriangleSetup& t, const TileRect& tile, int tile_size, const SampleLanes* samples,
+                          Sink&& sink) {
+    const int x0 = std::max<int>(t.minx, tile.x0), x1 = std::min<int>(t.maxx, tile.x1 - 1);
+    const int y0 = std::max<int>(t.miny, tile.y0), y1 = std::min<int>(t.maxy, tile.y1 - 1);
     if (x0 > x1 || y0 > y1) return;
     const int sx0 = x0 & ~(kStampW - 1), sy0 = y0 & ~(kStampH - 1);
     const unsigned holds = kOnEdge ? (kMulti ? samples->edge_holds : t.on_edge) : 0u;
@@ -338,12 +337,12 @@ inline void traverse_with(const TriangleSetup& t, const TileRect& tile, const Ti
 }
 
 template <bool kMulti, class Sink>
-inline void traverse(const TriangleSetup& t, const TileRect& tile, const TileRect& part, int tile_size,
-                     const SampleLanes* samples, Sink&& sink) {
+inline void traverse(const TriangleSetup& t, const TileRect& tile, int tile_size, const SampleLanes* samples,
+                     Sink&& sink) {
     if ((kMulti ? samples->edge_holds : t.on_edge) != 0)
-        traverse_with<kMulti, true>(t, tile, part, tile_size, samples, sink);
+        traverse_with<kMulti, true>(t, tile, tile_size, samples, sink);
     else
-        traverse_with<kMulti, false>(t, tile, part, tile_size, samples, sink);
+        traverse_with<kMulti, false>(t, tile, tile_size, samples, sink);
 }
 
 }  // namespace
@@ -447,21 +446,13 @@ uint64_t TileBuffers::covered_pixels(int width, int height) const {
 }
 
 void rasterize_opaque(const TriangleSetup& t, const TileRect& tile, TileBuffers& buffers) {
-    rasterize_opaque(t, tile, tile, buffers);
-}
-
-void rasterize_depth(const TriangleSetup& t, const TileRect& tile, TileBuffers& buffers) {
-    rasterize_depth(t, tile, tile, buffers);
-}
-
-void rasterize_opaque(const TriangleSetup& t, const TileRect& tile, const TileRect& part, TileBuffers& buffers) {
     float* depth = buffers.depth.data();
     uint32_t* ids = buffers.triangle.data();
     const vint id(int32_t(t.triangle));
     if (buffers.samples > 1) {
         const SampleLanes samples(t, sample_pattern(buffers.samples));
         const size_t plane = buffers.plane();
-        traverse<true>(t, tile, part, buffers.size, &samples, [&](size_t index, int, int, int s, vmask covered, vfloat z) {
+        traverse<true>(t, tile, buffers.size, &samples, [&](size_t index, int, int, int s, vmask covered, vfloat z) {
             const size_t i = size_t(s) * plane + index;
             const vmask pass = covered & (z < vfloat::load(depth + i));
             simd::store_masked(depth + i, pass, z);
@@ -469,49 +460,27 @@ void rasterize_opaque(const TriangleSetup& t, const TileRect& tile, const TileRe
         });
         return;
     }
-    traverse<false>(t, tile, part, buffers.size, nullptr, [&](size_t index, int, int, vmask covered, vfloat z) {
+    traverse<false>(t, tile, buffers.size, nullptr, [&](size_t index, int, int, vmask covered, vfloat z) {
         const vmask pass = covered & (z < vfloat::load(depth + index));
         simd::store_masked(depth + index, pass, z);
         simd::store_masked(ids + index, pass, id);
     });
 }
 
-void rasterize_depth(const TriangleSetup& t, const TileRect& tile, const TileRect& part, TileBuffers& buffers) {
+void rasterize_depth(const TriangleSetup& t, const TileRect& tile, TileBuffers& buffers) {
     float* depth = buffers.depth.data();
     if (buffers.samples > 1) {
         const SampleLanes samples(t, sample_pattern(buffers.samples));
         const size_t plane = buffers.plane();
-        traverse<true>(t, tile, part, buffers.size, &samples, [&](size_t index, int, int, int s, vmask covered, vfloat z) {
+        traverse<true>(t, tile, buffers.size, &samples, [&](size_t index, int, int, int s, vmask covered, vfloat z) {
             float* d = depth + size_t(s) * plane + index;
             simd::store_masked(d, covered & (z < vfloat::load(d)), z);
         });
         return;
     }
-    traverse<false>(t, tile, part, buffers.size, nullptr, [&](size_t index, int, int, vmask covered, vfloat z) {
+    traverse<false>(t, tile, buffers.size, nullptr, [&](size_t index, int, int, vmask covered, vfloat z) {
         simd::store_masked(depth + index, covered & (z < vfloat::load(depth + index)), z);
     });
-}
-
-void TileBands::begin(const TileRect& tile, TileBuffers& buffers, bool depth_only) {
-    tile_ = tile;
-    buffers_ = &buffers;
-    depth_only_ = depth_only;
-    pending_.clear();
-    const size_t bytes_per_row = size_t(buffers.size) * size_t(buffers.samples) * (depth_only ? 4 : 8);
-    band_rows_ = int(std::bit_floor(std::max<size_t>(kBandBytes / bytes_per_row, 1)));
-    band_rows_ = std::clamp(band_rows_, kStampH, buffers.size);
-    bands_ = (tile.height() + band_rows_ - 1) / band_rows_;
-    if (pending_.capacity() < kGroup) pending_.reserve(kGroup);
-}
-
-void TileBands::flush() {
-    for (int band = 0; band < bands_; ++band) {
-        const TileRect part{tile_.x0, tile_.y0 + band * band_rows_, tile_.x1,
-                            std::min(tile_.y1, tile_.y0 + (band + 1) * band_rows_)};
-        for (const TriangleSetup& t : pending_)
-            if (t.maxy >= part.y0 && t.miny < part.y1) draw(t, part);
-    }
-    pending_.clear();
 }
 
 size_t rasterize_tested(const TriangleSetup& t, const TileRect& tile, const float* depth,
@@ -520,7 +489,7 @@ size_t rasterize_tested(const TriangleSetup& t, const TileRect& tile, const floa
     alignas(64) float z_lanes[kLanes];
     size_t n = 0;
     const int tile_size = 1 << 8;  // any stamp-aligned width works: indices are unused here
-    traverse<false>(t, tile, tile, tile_size, nullptr, [&](size_t, int sx, int sy, vmask covered, vfloat z) {
+    traverse<false>(t, tile, tile_size, nullptr, [&](size_t, int sx, int sy, vmask covered, vfloat z) {
         (z + vfloat(1.0f)).store(z_lanes);  // window_depth(), as `depth` holds
         for (uint32_t bits = simd::bits(covered); bits; bits &= bits - 1) {
             const int lane = std::countr_zero(bits);
@@ -553,7 +522,7 @@ size_t rasterize_tested_samples(const TriangleSetup& t, const Tile& tile, Fragme
     alignas(64) float depths[kLanes];
     size_t count = 0;
     const int tile_size = 1 << 8;  // any stamp-aligned width works: indices are unused here
-    traverse<true>(t, rect, rect, tile_size, &samples, [&](size_t, int sx, int sy, int s, vmask covered, vfloat z) {
+    traverse<true>(t, rect, tile_size, &samples, [&](size_t, int sx, int sy, int s, vmask covered, vfloat z) {
         if (s == 0) {
             const vint x = vint(sx) + simd::stamp_x(), y = vint(sy) + simd::stamp_y();
             const vmask inside = (x < vint(rect.x1)) & (y < vint(rect.y1)) & (x >= vint(rect.x0)) & (y >= vint(rect.y0));

@@ -5,7 +5,6 @@
 // plane per stamp. Small triangles skip the block level (llvmpipe-style size classes).
 #pragma once
 #include <cstdint>
-#include <vector>
 
 #include "raster/core/aligned_vector.h"
 #include "raster/core/tile.h"
@@ -55,45 +54,6 @@ struct TileBuffers {
 void rasterize_opaque(const TriangleSetup& t, const TileRect& tile, TileBuffers& buffers);
 // The same without triangle ids (depth-only renders: shadow maps).
 void rasterize_depth(const TriangleSetup& t, const TileRect& tile, TileBuffers& buffers);
-// Both restricted to the pixels of `part`, a rectangle inside `tile` whose sides lie on
-// stamp boundaries (kStampW, kStampH) of the frame.
-void rasterize_opaque(const TriangleSetup& t, const TileRect& tile, const TileRect& part, TileBuffers& buffers);
-void rasterize_depth(const TriangleSetup& t, const TileRect& tile, const TileRect& part, TileBuffers& buffers);
-
-// Draws a tile's opaque triangles band of rows by band of rows, each band's depths and ids
-// small enough for the L1 data cache. A 128-pixel tile's buffers (128 KiB) live in L2: drawn
-// a triangle at a time, under heavy overdraw every stamp moves its two 64-byte lines between
-// L2 and L1. Instead the triangles are held back in groups (kGroup setups), and each group is
-// drawn into one band, then the next: a band then takes the whole group's overdraw while it
-// is in L1. Each pixel lies in one band and sees the triangles in submission order, so the
-// result is that of drawing them one by one.
-class TileBands {
-public:
-    static constexpr size_t kGroup = 256;
-    static constexpr size_t kBandBytes = 32 * 1024;  // depths + ids of a band (L1d: 48 KiB)
-
-    // Starts a tile: `buffers` cleared for `tile`; depth_only as rasterize_depth().
-    void begin(const TileRect& tile, TileBuffers& buffers, bool depth_only);
-    void add(const TriangleSetup& t) {
-        if (bands_ == 1) return draw(t, tile_);
-        pending_.push_back(t);
-        if (pending_.size() == kGroup) flush();
-    }
-    // Draws what is held back; the tile is then complete.
-    void finish() { flush(); }
-
-private:
-    void flush();
-    void draw(const TriangleSetup& t, const TileRect& part) {
-        if (depth_only_) rasterize_depth(t, tile_, part, *buffers_);
-        else rasterize_opaque(t, tile_, part, *buffers_);
-    }
-    std::vector<TriangleSetup> pending_;
-    TileRect tile_{};
-    TileBuffers* buffers_ = nullptr;
-    bool depth_only_ = false;
-    int bands_ = 1, band_rows_ = 0;
-};
 
 // A covered pixel of a triangle: frame pixel (x, y), its window depth, and the samples it
 // covers and passes the depth test at. One sample: the pixel centre, its depth there, mask 1.
