@@ -2,7 +2,6 @@
 
 #include <algorithm>
 #include <bit>
-#include <cmath>
 #include <cstring>
 #include <span>
 
@@ -105,141 +104,6 @@ inline void traverse_stamps(const DepthPlane& plane, const EdgeLanes (&e)[3], co
         row1 = row1 + step_y1;
         row2 = row2 + step_y2;
     }
-}
-
-// floor(n / d) for d > 0, |n| < 2^40, given inv = 1 / d: the quotient in double is within
-// one of the exact one, which the two integer checks correct (no branches; a hardware
-// division per row and edge cost more than the stamps the span saves).
-inline int32_t floor_div(int64_t n, int64_t d, double inv) {
-    int64_t q = int64_t(std::floor(double(n) * inv));
-    q -= int64_t(q * d > n);
-    q += int64_t((q + 1) * d <= n);
-    return int32_t(q);
-}
-
-// Narrows [first, last] to the stamps k (0 <= k < count) of a row where v + k s >= 0: v is
-// an edge's F at the row's first stamp at its largest (or smallest) lane, s its step per
-// stamp, inv = 1 / |s|. The numerator is clamped to where the answer stays within [-1, count].
-inline void narrow(int32_t v, int32_t s, double inv, int32_t count, int32_t& first, int32_t& last) {
-    if (s > 0) {  // ceil(-v / s) = -floor(v / s)
-        first = std::max(first, -floor_div(std::clamp<int64_t>(v, -int64_t(count) * s, 0), s, inv));
-    } else if (s < 0) {
-        last = std::min(last, floor_div(std::clamp<int64_t>(v, int64_t(s), -int64_t(count) * s), -int64_t(s), inv));
-    } else if (v < 0) {
-        last = -1;
-    }
-}
-
-// traverse_stamps without the per-stamp branch, for regions too big to visit whole: each row
-// of stamps is first cut to the span where every edge can be inside at some lane of the
-// stamp, and within it to the stamps where every edge is inside at every lane (scan
-// conversion by spans: F is affine along the row, so where it crosses zero is a quotient).
-// The span's ends come from the edge's extreme lanes: F at the stamp's corner plus the
-// largest (smallest) lane offset. Stamps outside the span have no lane covered; those inside
-// it are visited as traverse_stamps visits them, and the fully covered ones without the edge
-// tests (coverage: all lanes). kOnEdge: no fully covered stamps (their lanes on an edge still
-// need F == 0 tested). The depth clamp is left out where it cannot act: the plane's value,
-// evaluated as the lanes evaluate it, is monotonic in x and in y (fma rounds monotonically),
-// so within [-1, 0] at the region's four corner lanes means within it everywhere.
-template <bool kOnEdge, class Sink>
-inline void traverse_spans(const DepthPlane& plane, const EdgeLanes (&e)[3], const OnEdge* on, int sx0, int sy0,
-                           int sx1, int sy1, const TileRect& tile, int tile_size, Sink&& sink_ref) {
-    auto sink = sink_ref;  // a local copy: its captures stay in registers across the stores
-    const vfloat lane_x = simd::to_float(simd::stamp_x());
-    const vfloat lane_y = simd::to_float(simd::stamp_y());
-    const vfloat a(plane.a), b(plane.b), c(plane.c);
-    const vint zero(0);
-    const vmask all(true);
-    const unsigned stamps_per_row = unsigned(tile_size / kStampW);
-    const int count = (sx1 - sx0) / kStampW + 1;  // stamps per row
-    // Per edge: F at the row's first stamp's corner, its steps, and the range of the lane
-    // offsets F(corner + lane) - F(corner) (per pixel F changes by step_x / kStampW along x,
-    // step_y / kStampH along y).
-    int32_t f[3], step_x[3], step_y[3], hi[3], lo[3];
-    double inv[3];
-    for (int i = 0; i < 3; ++i) {
-        f[i] = e[i].f;
-        step_x[i] = e[i].step_x;
-        step_y[i] = e[i].step_y;
-        inv[i] = e[i].step_x != 0 ? 1.0 / std::abs(double(e[i].step_x)) : 0.0;
-        const int32_t px = e[i].step_x / kStampW, py = e[i].step_y / kStampH;
-        hi[i] = std::max(0, px * (kStampW - 1)) + std::max(0, py * (kStampH - 1));
-        lo[i] = std::min(0, px * (kStampW - 1)) + std::min(0, py * (kStampH - 1));
-    }
-    bool clamp = true;
-    if constexpr (!kOnEdge) {
-        const int last_row = sy0 + (sy1 - sy0) / kStampH * kStampH;
-        const float xs[2] = {float(sx0 - plane.ax), float(sx0 + count * kStampW - 1 - plane.ax)};
-        const float ys[2] = {float(sy0 - plane.ay), float(last_row + kStampH - 1 - plane.ay)};
-        bool inside = true;
-        for (float y : ys)
-            for (float x : xs) {
-                const float z = std::fma(plane.a, x, std::fma(plane.b, y, plane.c));
-                inside = inside && z >= -1.0f && z <= 0.0f;
-            }
-        clamp = !inside;
-    }
-    const auto rows = [&]<bool kClamp>() {
-        const auto depth_at = [&](const vfloat& x, const vfloat& z_row) {
-            const vfloat z = simd::fma(a, x, z_row);
-            return kClamp ? simd::min(simd::max(z, vfloat(-1.0f)), vfloat(0.0f)) : z;
-        };
-        for (int sy = sy0; sy <= sy1; sy += kStampH) {
-            // Stamps k0 .. k1 of the row may be covered; full0 .. full1 are covered at every lane.
-            int32_t k0 = 0, k1 = count - 1, full0 = kOnEdge ? count : 0, full1 = count - 1;
-            for (int i = 0; i < 3; ++i) {
-                narrow(f[i] + hi[i], step_x[i], inv[i], count, k0, k1);
-                narrow(f[i] + lo[i], step_x[i], inv[i], count, full0, full1);
-            }
-            if (k0 <= k1) {
-                // DepthPlane::offset_at: fma(a, x - ax, fma(b, y - ay, c)), x - ax and y - ay exact in float.
-                const vfloat z_row = simd::fma(b, vfloat(float(sy - plane.ay)) + lane_y, c);
-                const size_t row_index =
-                    (unsigned(sy - tile.y0) / kStampH * stamps_per_row + unsigned(sx0 - tile.x0) / kStampW) * kLanes;
-                const vfloat x_step = vfloat(float(kStampW));
-                // Partly covered stamps ka .. kb: the edge tests per lane.
-                const auto partial = [&](int ka, int kb) {
-                    vint f0 = vint(f[0] + ka * step_x[0]) + e[0].offset;
-                    vint f1 = vint(f[1] + ka * step_x[1]) + e[1].offset;
-                    vint f2 = vint(f[2] + ka * step_x[2]) + e[2].offset;
-                    const vint step_x0(step_x[0]), step_x1(step_x[1]), step_x2(step_x[2]);
-                    vfloat x = vfloat(float(sx0 + ka * kStampW - plane.ax)) + lane_x;  // exact: |x| < 2^14
-                    size_t index = row_index + size_t(ka) * kLanes;
-                    for (int k = ka; k <= kb; ++k, index += kLanes) {
-                        vfloat z = depth_at(x, z_row);
-                        if constexpr (kOnEdge) {
-                            z = simd::select(f0 == vint(on->f[0]), z + vfloat(on->step[0]), z);
-                            z = simd::select(f1 == vint(on->f[1]), z + vfloat(on->step[1]), z);
-                            z = simd::select(f2 == vint(on->f[2]), z + vfloat(on->step[2]), z);
-                            z = simd::min(simd::max(z, vfloat(-1.0f)), vfloat(0.0f));
-                        }
-                        sink(index, sx0 + k * kStampW, sy, (f0 | f1 | f2) >= zero, z);
-                        f0 = f0 + step_x0;
-                        f1 = f1 + step_x1;
-                        f2 = f2 + step_x2;
-                        x = x + x_step;
-                    }
-                };
-                full0 = std::max(full0, k0);
-                full1 = std::min(full1, k1);
-                if (full0 > full1) {
-                    partial(k0, k1);
-                } else {
-                    if (k0 < full0) partial(k0, full0 - 1);
-                    vfloat x = vfloat(float(sx0 + full0 * kStampW - plane.ax)) + lane_x;
-                    size_t index = row_index + size_t(full0) * kLanes;
-                    for (int k = full0; k <= full1; ++k, index += kLanes) {
-                        sink(index, sx0 + k * kStampW, sy, all, depth_at(x, z_row));
-                        x = x + x_step;
-                    }
-                    if (full1 < k1) partial(full1 + 1, k1);
-                }
-            }
-            for (int i = 0; i < 3; ++i) f[i] += step_y[i];
-        }
-    };
-    if (kOnEdge || clamp) rows.template operator()<!kOnEdge>();
-    else rows.template operator()<false>();
 }
 
 // The stamps of a region entirely inside the triangle: every lane covered, depth only.
@@ -422,15 +286,9 @@ inline void traverse_with(const TriangleSetup& t, const TileRect& tile, int tile
                 on.f[i] = here ? 0 : kNever;
                 on.step[i] = here ? t.depth.edge_step(t.dx[i], t.dy[i]) : 0.0f;
             }
-            if constexpr (kBranchless)
-                traverse_stamps<true, true>(t.depth, lanes, &on, px0, py0, px1, py1, tile, tile_size, sink);
-            else
-                traverse_spans<true>(t.depth, lanes, &on, px0, py0, px1, py1, tile, tile_size, sink);
+            traverse_stamps<kBranchless, true>(t.depth, lanes, &on, px0, py0, px1, py1, tile, tile_size, sink);
         } else {
-            if constexpr (kBranchless)
-                traverse_stamps<true, false>(t.depth, lanes, nullptr, px0, py0, px1, py1, tile, tile_size, sink);
-            else
-                traverse_spans<false>(t.depth, lanes, nullptr, px0, py0, px1, py1, tile, tile_size, sink);
+            traverse_stamps<kBranchless, false>(t.depth, lanes, nullptr, px0, py0, px1, py1, tile, tile_size, sink);
         }
     };
     if (t.small) {
@@ -602,7 +460,7 @@ void rasterize_opaque(const TriangleSetup& t, const TileRect& tile, TileBuffers&
         });
         return;
     }
-    traverse<false>(t, tile, buffers.size, nullptr, [depth, ids, id](size_t index, int, int, vmask covered, vfloat z) {
+    traverse<false>(t, tile, buffers.size, nullptr, [&](size_t index, int, int, vmask covered, vfloat z) {
         const vmask pass = covered & (z < vfloat::load(depth + index));
         simd::store_masked(depth + index, pass, z);
         simd::store_masked(ids + index, pass, id);
@@ -620,7 +478,7 @@ void rasterize_depth(const TriangleSetup& t, const TileRect& tile, TileBuffers& 
         });
         return;
     }
-    traverse<false>(t, tile, buffers.size, nullptr, [depth](size_t index, int, int, vmask covered, vfloat z) {
+    traverse<false>(t, tile, buffers.size, nullptr, [&](size_t index, int, int, vmask covered, vfloat z) {
         simd::store_masked(depth + index, covered & (z < vfloat::load(depth + index)), z);
     });
 }
