@@ -2,7 +2,6 @@
 
 #include <algorithm>
 #include <bit>
-#include <cmath>
 #include <cstring>
 #include <span>
 
@@ -60,27 +59,6 @@ EdgeLanes accepted_edge() { return {0, 0, 0, vint(0), true}; }
 // faster than predicting "any lane covered" and the row exits, which mispredict often
 // (sphere grid at 1080p, 1 thread, CPU time per frame: 16k triangles 3.4 -> 2.4 ms, 100k
 // 8.2 -> 5.9 ms; regions up to 16 pixels gave 3.2 and 6.0 ms, up to 64 the same as 32).
-// Whether the depth clamp of traverse_stamps and fill_stamps can act on the stamps with
-// corners sx0 <= sx <= sx1, sy0 <= sy <= sy1 (stamp-aligned): the plane's value as the lanes
-// evaluate it, fma(a, x, fma(b, y, c)), is monotonic in x and in y (fma rounds
-// monotonically), so it lies in [-1, 0) at every lane when it does at the four corner lanes.
-// Where it does, the per-stamp clamp (two of the loop's dozen vector operations) is left out.
-// 0 itself counts as outside: the clamp turns -0 into +0, which must not change.
-inline bool clamp_needed(const DepthPlane& plane, int sx0, int sy0, int sx1, int sy1) {
-    const float xs[2] = {float(sx0 - plane.ax), float(sx1 + kStampW - 1 - plane.ax)};
-    const float ys[2] = {float(sy0 - plane.ay), float(sy1 + kStampH - 1 - plane.ay)};
-    bool inside = true;
-    for (float y : ys)
-        for (float x : xs) {
-            const float z = std::fma(plane.a, x, std::fma(plane.b, y, plane.c));
-            inside = inside && z >= -1.0f && z < 0.0f;  // false for NaN
-        }
-    return !inside;
-}
-
-// The last stamp corner of a row or column that starts at s0 and covers s1 (step kStamp).
-inline int last_corner(int s0, int s1, int step) { return s0 + (s1 - s0) / step * step; }
-
 template <bool kBranchless, bool kOnEdge, class Sink>
 inline void traverse_stamps(const DepthPlane& plane, const EdgeLanes (&e)[3], const OnEdge* on, int sx0, int sy0,
                             int sx1, int sy1, const TileRect& tile, int tile_size, Sink&& sink) {
@@ -88,8 +66,7 @@ inline void traverse_stamps(const DepthPlane& plane, const EdgeLanes (&e)[3], co
     const vfloat lane_y = simd::to_float(simd::stamp_y());
     const vfloat a(plane.a), b(plane.b), c(plane.c);
     // Edge values of the stamp row's first stamp, stepped with vector adds.
-    const vint first0 = vint(e[0].f) + e[0].offset, first1 = vint(e[1].f) + e[1].offset,
-               first2 = vint(e[2].f) + e[2].offset;
+    vint row0 = vint(e[0].f) + e[0].offset, row1 = vint(e[1].f) + e[1].offset, row2 = vint(e[2].f) + e[2].offset;
     const vint step_x0(e[0].step_x), step_x1(e[1].step_x), step_x2(e[2].step_x);
     const vint step_y0(e[0].step_y), step_y1(e[1].step_y), step_y2(e[2].step_y);
     // An edge whose F does not grow to the right (step_x <= 0) that is negative over a whole
@@ -97,50 +74,36 @@ inline void traverse_stamps(const DepthPlane& plane, const EdgeLanes (&e)[3], co
     const bool exit0 = e[0].step_x <= 0, exit1 = e[1].step_x <= 0, exit2 = e[2].step_x <= 0;
     const vint zero(0);
     const unsigned stamps_per_row = unsigned(tile_size / kStampW);
-    // x - ax per lane, stepped by kStampW in int32 and converted per stamp (exact: |x - ax|
-    // < 2^15): a float accumulator would chain each stamp to the last by an add's latency.
-    const vint x_first = vint(sx0 - plane.ax) + simd::stamp_x();
-    const vint x_step(kStampW);
-    const auto rows = [&]<bool kClamp>() {
-        vint row0 = first0, row1 = first1, row2 = first2;
-        for (int sy = sy0; sy <= sy1; sy += kStampH) {
-            // DepthPlane::offset_at: fma(a, x - ax, fma(b, y - ay, c)), x - ax and y - ay exact in float.
-            const vfloat z_row = simd::fma(b, vfloat(float(sy - plane.ay)) + lane_y, c);
-            vint f0 = row0, f1 = row1, f2 = row2;
-            vint x = x_first;
-            size_t index =
-                (unsigned(sy - tile.y0) / kStampH * stamps_per_row + unsigned(sx0 - tile.x0) / kStampW) * kLanes;
-            for (int sx = sx0; sx <= sx1; sx += kStampW, index += kLanes) {
-                // Inside where all three F >= 0: one sign test on their bitwise OR.
-                const vmask covered = (f0 | f1 | f2) >= zero;
-                if (kBranchless || simd::any(covered)) {
-                    vfloat z = simd::fma(a, simd::to_float(x), z_row);
-                    if constexpr (kOnEdge) {
-                        z = simd::select(f0 == vint(on->f[0]), z + vfloat(on->step[0]), z);
-                        z = simd::select(f1 == vint(on->f[1]), z + vfloat(on->step[1]), z);
-                        z = simd::select(f2 == vint(on->f[2]), z + vfloat(on->step[2]), z);
-                    }
-                    if constexpr (kClamp) z = simd::min(simd::max(z, vfloat(-1.0f)), vfloat(0.0f));
-                    sink(index, sx, sy, covered, z);
-                } else if ((exit0 && !simd::any(f0 >= zero)) || (exit1 && !simd::any(f1 >= zero)) ||
-                           (exit2 && !simd::any(f2 >= zero))) {
-                    break;
+    for (int sy = sy0; sy <= sy1; sy += kStampH) {
+        // DepthPlane::offset_at: fma(a, x - ax, fma(b, y - ay, c)), x - ax and y - ay exact in float.
+        const vfloat z_row = simd::fma(b, vfloat(float(sy - plane.ay)) + lane_y, c);
+        vint f0 = row0, f1 = row1, f2 = row2;
+        float fx = float(sx0 - plane.ax);
+        size_t index = (unsigned(sy - tile.y0) / kStampH * stamps_per_row + unsigned(sx0 - tile.x0) / kStampW) * kLanes;
+        for (int sx = sx0; sx <= sx1; sx += kStampW, index += kLanes, fx += float(kStampW)) {
+            // Inside where all three F >= 0: one sign test on their bitwise OR.
+            const vmask covered = (f0 | f1 | f2) >= zero;
+            if (kBranchless || simd::any(covered)) {
+                vfloat z = simd::fma(a, vfloat(fx) + lane_x, z_row);
+                if constexpr (kOnEdge) {
+                    z = simd::select(f0 == vint(on->f[0]), z + vfloat(on->step[0]), z);
+                    z = simd::select(f1 == vint(on->f[1]), z + vfloat(on->step[1]), z);
+                    z = simd::select(f2 == vint(on->f[2]), z + vfloat(on->step[2]), z);
                 }
-                f0 = f0 + step_x0;
-                f1 = f1 + step_x1;
-                f2 = f2 + step_x2;
-                x = x + x_step;
+                z = simd::min(simd::max(z, vfloat(-1.0f)), vfloat(0.0f));
+                sink(index, sx, sy, covered, z);
+            } else if ((exit0 && !simd::any(f0 >= zero)) || (exit1 && !simd::any(f1 >= zero)) ||
+                       (exit2 && !simd::any(f2 >= zero))) {
+                break;
             }
-            row0 = row0 + step_y0;
-            row1 = row1 + step_y1;
-            row2 = row2 + step_y2;
+            f0 = f0 + step_x0;
+            f1 = f1 + step_x1;
+            f2 = f2 + step_x2;
         }
-    };
-    // With kOnEdge the edge steps may leave [-1, 0]: always clamped.
-    if (kOnEdge || clamp_needed(plane, sx0, sy0, last_corner(sx0, sx1, kStampW), last_corner(sy0, sy1, kStampH)))
-        rows.template operator()<true>();
-    else
-        rows.template operator()<false>();
+        row0 = row0 + step_y0;
+        row1 = row1 + step_y1;
+        row2 = row2 + step_y2;
+    }
 }
 
 // The stamps of a region entirely inside the triangle: every lane covered, depth only.
@@ -152,26 +115,16 @@ inline void fill_stamps(const DepthPlane& plane, int sx0, int sy0, int sx1, int 
     const vfloat a(plane.a), b(plane.b), c(plane.c);
     const vmask all(true);
     const unsigned stamps_per_row = unsigned(tile_size / kStampW);
-    const vint x_first = vint(sx0 - plane.ax) + simd::stamp_x();  // as traverse_stamps
-    const vint x_step(kStampW);
-    const auto rows = [&]<bool kClamp>() {
-        for (int sy = sy0; sy <= sy1; sy += kStampH) {
-            const vfloat z_row = simd::fma(b, vfloat(float(sy - plane.ay)) + lane_y, c);
-            vint x = x_first;
-            size_t index =
-                (unsigned(sy - tile.y0) / kStampH * stamps_per_row + unsigned(sx0 - tile.x0) / kStampW) * kLanes;
-            for (int sx = sx0; sx <= sx1; sx += kStampW, index += kLanes) {
-                vfloat z = simd::fma(a, simd::to_float(x), z_row);
-                if constexpr (kClamp) z = simd::min(simd::max(z, vfloat(-1.0f)), vfloat(0.0f));
-                sink(index, sx, sy, all, z);
-                x = x + x_step;
-            }
+    for (int sy = sy0; sy <= sy1; sy += kStampH) {
+        const vfloat z_row = simd::fma(b, vfloat(float(sy - plane.ay)) + lane_y, c);
+        float fx = float(sx0 - plane.ax);
+        size_t index = (unsigned(sy - tile.y0) / kStampH * stamps_per_row + unsigned(sx0 - tile.x0) / kStampW) * kLanes;
+        for (int sx = sx0; sx <= sx1; sx += kStampW, index += kLanes, fx += float(kStampW)) {
+            vfloat z = simd::fma(a, vfloat(fx) + lane_x, z_row);
+            z = simd::min(simd::max(z, vfloat(-1.0f)), vfloat(0.0f));
+            sink(index, sx, sy, all, z);
         }
-    };
-    if (clamp_needed(plane, sx0, sy0, last_corner(sx0, sx1, kStampW), last_corner(sy0, sy1, kStampH)))
-        rows.template operator()<true>();
-    else
-        rows.template operator()<false>();
+    }
 }
 
 // The samples of a multisampled render as traversal uses them for one triangle: per sample
@@ -507,9 +460,7 @@ void rasterize_opaque(const TriangleSetup& t, const TileRect& tile, TileBuffers&
         });
         return;
     }
-    // Captured by value: by reference, the pointers would be read again after every masked
-    // store (which the compiler cannot prove does not overwrite them).
-    traverse<false>(t, tile, buffers.size, nullptr, [depth, ids, id](size_t index, int, int, vmask covered, vfloat z) {
+    traverse<false>(t, tile, buffers.size, nullptr, [&](size_t index, int, int, vmask covered, vfloat z) {
         const vmask pass = covered & (z < vfloat::load(depth + index));
         simd::store_masked(depth + index, pass, z);
         simd::store_masked(ids + index, pass, id);
@@ -527,7 +478,7 @@ void rasterize_depth(const TriangleSetup& t, const TileRect& tile, TileBuffers& 
         });
         return;
     }
-    traverse<false>(t, tile, buffers.size, nullptr, [depth](size_t index, int, int, vmask covered, vfloat z) {
+    traverse<false>(t, tile, buffers.size, nullptr, [&](size_t index, int, int, vmask covered, vfloat z) {
         simd::store_masked(depth + index, covered & (z < vfloat::load(depth + index)), z);
     });
 }
