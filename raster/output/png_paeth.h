@@ -4,9 +4,13 @@
 // predictor is b). The encoder reads only the unfiltered rows, so every byte is independent of
 // the others: the row filters in whole vectors of bytes.
 //
-// paeth_residuals is the fast form: the predictor with pa = |b - c|, pb = |a - c|,
-// pc = |(a - c) + (b - c)| (for p = a + b - c these are |p - a|, |p - b|, |p - c|), branch-free
-// so that the compiler vectorises it.
+// paeth_residuals is the fast form: 64 bytes per step on AVX-512BW, 32 on AVX2, computed in
+// 8-bit lanes. With p = a + b - c the predictor compares
+//     pa = |p - a| = |b - c|,  pb = |p - b| = |a - c|,  pc = |p - c| = |(a - c) + (b - c)|;
+// pa and pb fit a byte; pc is pa + pb when a - c and b - c have the same sign and |pa - pb|
+// otherwise, and pa + pb is taken with unsigned saturation: a sum past 255 is no smaller than
+// pa or pb either way, so the two comparisons with pc come out the same. The compiler's own
+// vectorisation of the scalar loop widens to 16-bit lanes, half as many bytes per instruction.
 // paeth_residuals_reference is the predictor as the standard writes it, byte by byte: the
 // tests hold the fast form to it for every (a, b, c) and for rows of every length and bpp.
 #pragma once
