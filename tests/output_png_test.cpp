@@ -22,6 +22,7 @@
 #include "raster/output/frame_stream.h"
 #include "raster/output/frame_encoding.h"
 #include "raster/output/png_encoder.h"
+#include "raster/output/png_paeth.h"
 #include "raster/output/rle_deflate.h"
 #include "raster/output/srgb8.h"
 
@@ -190,6 +191,38 @@ TEST(PngEncoder, DecodesToTheSamplesForEveryFilterLevelAndChannelCount) {
     }
     const std::vector<uint8_t> one = {200, 10, 20, 255};
     expect_decodes_to(output::encode_png(one.data(), 1, 1, 4), one, 1, 1, 4, "1x1");
+}
+
+// The vector Paeth filter against the byte-by-byte predictor: every (a, b, c) once, as the
+// bytes of one wide "pixel" (bpp = 65536: byte j of the second pixel has a = j >> 8 to its
+// left, b = j & 255 above, c above-left), then random rows of every length up to a few vectors
+// and every bpp the encoder uses, and a 1080p row.
+TEST(PngPaeth, FastEqualsTheReferenceForEveryTripleAndRowShape) {
+    constexpr size_t kPixel = 65536;
+    std::mt19937 rng(4);
+    std::vector<uint8_t> row(2 * kPixel), up(2 * kPixel), fast(2 * kPixel), reference(2 * kPixel);
+    for (size_t j = 0; j < kPixel; ++j) {
+        row[j] = uint8_t(j >> 8);
+        up[kPixel + j] = uint8_t(j);
+        row[kPixel + j] = uint8_t(rng());
+    }
+    for (int c = 0; c < 256; ++c) {
+        std::fill_n(up.begin(), kPixel, uint8_t(c));
+        output::paeth_residuals(row.data(), up.data(), row.size(), kPixel, fast.data());
+        output::paeth_residuals_reference(row.data(), up.data(), row.size(), kPixel, reference.data());
+        ASSERT_TRUE(fast == reference) << "c = " << c;
+    }
+    for (size_t bpp = 1; bpp <= 4; ++bpp) {
+        for (size_t n : {size_t(1920) * bpp, size_t(0)}) {
+            for (size_t length = n; length <= (n == 0 ? 260 : n); ++length) {
+                std::vector<uint8_t> r(length), u(length), f(length + 1, 0xA5), ref(length + 1, 0xA5);
+                for (size_t i = 0; i < length; ++i) r[i] = uint8_t(rng()), u[i] = uint8_t(rng());
+                output::paeth_residuals(r.data(), u.data(), length, bpp, f.data());
+                output::paeth_residuals_reference(r.data(), u.data(), length, bpp, ref.data());
+                ASSERT_TRUE(f == ref) << "bpp " << bpp << " length " << length;  // nothing past the row either
+            }
+        }
+    }
 }
 
 TEST(PngEncoder, SameBytesWithOneAndTwoThreads) {

@@ -10,6 +10,7 @@
 #include <stdexcept>
 
 #include "raster/output/adler32.h"
+#include "raster/output/png_paeth.h"
 #include "raster/output/rle_deflate.h"
 
 namespace tessera::output {
@@ -34,25 +35,6 @@ constexpr bool kBandsInParallel = true;
 // Section 9.2 filter types.
 enum : uint8_t { kNone = 0, kSub = 1, kUp = 2, kAverage = 3, kPaeth = 4 };
 
-uint8_t paeth_predictor(int a, int b, int c) {
-    const int p = a + b - c;
-    const int pa = std::abs(p - a), pb = std::abs(p - b), pc = std::abs(p - c);
-    return uint8_t(pa <= pb && pa <= pc ? a : (pb <= pc ? b : c));
-}
-
-// Paeth residuals of bytes [from, n) (from >= bpp): paeth_predictor in a branch-free form the
-// compiler vectorises (16-bit lanes): pa = |b - c|, pb = |a - c|, pc = |a + b - 2c| are
-// |p - a|, |p - b|, |p - c| for p = a + b - c, and the choice is the same.
-[[gnu::noinline]] void paeth_residuals(const uint8_t* __restrict row, const uint8_t* __restrict up,
-                                       uint8_t* __restrict r, size_t from, size_t n, size_t bpp) {
-    for (size_t i = from; i < n; ++i) {
-        const int a = row[i - bpp], b = up[i], c = up[i - bpp];
-        const int pa = std::abs(b - c), pb = std::abs(a - c), pc = std::abs(a + b - 2 * c);
-        const int predicted = pa <= pb && pa <= pc ? a : (pb <= pc ? b : c);
-        r[i] = uint8_t(row[i] - predicted);
-    }
-}
-
 // One filtered row: out[0] = the filter type, out[1 .. n] the residuals. `up` is the previous
 // row (zeros above the first row), `bpp` the bytes per pixel.
 void filter_row(uint8_t type, const uint8_t* row, const uint8_t* up, size_t n, size_t bpp, uint8_t* out) {
@@ -69,13 +51,7 @@ void filter_row(uint8_t type, const uint8_t* row, const uint8_t* up, size_t n, s
         case kAverage:
             for (size_t i = 0; i < n; ++i) r[i] = uint8_t(row[i] - ((i >= bpp ? row[i - bpp] : 0) + up[i]) / 2);
             break;
-        default: {
-            // The first pixel has no left neighbour (a = c = 0: the predictor is `up`).
-            const size_t first = std::min(bpp, n);
-            for (size_t i = 0; i < first; ++i) r[i] = uint8_t(row[i] - paeth_predictor(0, up[i], 0));
-            paeth_residuals(row, up, r, first, n, bpp);
-            break;
-        }
+        default: paeth_residuals(row, up, n, bpp, r); break;
     }
 }
 
