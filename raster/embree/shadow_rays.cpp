@@ -1,9 +1,11 @@
 #include "raster/embree/shadow_rays.h"
 
 #include <algorithm>
+#include <bit>
 #include <cmath>
 #include <vector>
 
+#include "raster/core/scratch_vector.h"
 #include "raster/embree/packets.h"
 #include "raster/simd/simd.h"
 
@@ -43,70 +45,86 @@ void trace_single(RTCScene scene, const shadow::SurfacePoints& points, const glm
     }
 }
 
-// The points that face the light, in order: packets are filled with them only, so no lane
-// is spent on a point the light cannot reach (and consecutive points stay neighbours).
-void facing_points(const shadow::SurfacePoints& points, const glm::vec3& light, uint8_t bit,
-                   std::vector<uint32_t>& out) {
-    out.resize(points.size());
-    size_t n = 0;
-    if (points.facing.size() == points.size()) {  // gathered with the lights: branch-free
-        const uint8_t* facing = points.facing.data();
-        uint32_t* to = out.data();
-        for (size_t i = 0; i < points.size(); ++i) {
-            to[n] = uint32_t(i);
-            n += (facing[i] & bit) != 0;
-        }
-    } else {
-        for (size_t i = 0; i < points.size(); ++i)
-            if (shadow::faces_light(points.position[i], points.normal[i], light)) out[n++] = uint32_t(i);
-    }
-    out.resize(n);
-}
+// The shadow rays of the points that face the light, in point order, as structure of arrays:
+// packets are filled with them only, so no lane is spent on a point the light cannot reach
+// (and consecutive rays stay neighbours), and a packet copies its lanes instead of gathering.
+struct FacingRays {
+    ScratchVector<float> ox, oy, oz, dx, dy, dz;
+    ScratchVector<uint32_t> point;  // the index of each ray's point
+    size_t size = 0;
+};
 
-// shadow_ray() for the lanes of a packet, kLanes at a time: the points' positions and normals
-// gathered, the same float operations (max of the magnitudes, then the offset), stored into
-// the packet's arrays.
-template <class PacketRay>
-void set_lanes(PacketRay& packet, int width, const shadow::SurfacePoints& points, const uint32_t* index, int count,
-               const glm::vec3& light) {
+// shadow_ray() for every point facing the light (faces_light), simd::kLanes points at a time:
+// positions and normals loaded as three interleaved streams, the same float operations (the
+// facing test, the largest magnitude, the offset) in lanes, and the facing lanes appended,
+// compressed, as whole vectors (the arrays have a vector of room past the last ray).
+void facing_rays(const shadow::SurfacePoints& points, const glm::vec3& light, FacingRays& out) {
+    using simd::kLanes;
     using simd::vfloat;
     using simd::vint;
+    using simd::vmask;
+    const size_t count = points.size();
+    const size_t room = count + size_t(kLanes);
+    for (ScratchVector<float>* v : {&out.ox, &out.oy, &out.oz, &out.dx, &out.dy, &out.dz}) v->resize(room);
+    out.point.resize(room);
+    out.size = 0;
+    if (count == 0) return;
     const float* position = &points.position[0].x;
     const float* normal = &points.normal[0].x;
     const vint sign_off(0x7FFFFFFF);
     const auto magnitude = [&](vfloat v) { return simd::float_of_bits(simd::bits_of(v) & sign_off); };
-    for (int first = 0; first < width; first += simd::kLanes) {
-        alignas(64) int32_t offset[simd::kLanes];
-        for (int lane = 0; lane < simd::kLanes; ++lane) {
-            const int k = first + lane;
-            offset[lane] = int32_t(3 * index[k < count ? k : 0]);  // idle lanes repeat the first ray
+    const auto split = [](const float* p, vfloat& x, vfloat& y, vfloat& z) {
+        vint a, b, c;
+        simd::load_interleaved3(reinterpret_cast<const int32_t*>(p), a, b, c);
+        x = simd::float_of_bits(a), y = simd::float_of_bits(b), z = simd::float_of_bits(c);
+    };
+    size_t n = 0;
+    for (size_t first = 0; first < count; first += size_t(kLanes)) {
+        const vint index = simd::lane_index() + vint(int32_t(first));
+        vfloat px, py, pz, nx, ny, nz;
+        vmask in_list(true);
+        if (count - first >= size_t(kLanes)) {
+            split(position + 3 * first, px, py, pz);
+            split(normal + 3 * first, nx, ny, nz);
+        } else {  // the last points: lanes past the list repeat the last point, and are off
+            in_list = index < vint(int32_t(count));
+            const vint o = simd::min(index, vint(int32_t(count - 1))) * vint(3);
+            px = simd::gather(position, o), py = simd::gather(position + 1, o), pz = simd::gather(position + 2, o);
+            nx = simd::gather(normal, o), ny = simd::gather(normal + 1, o), nz = simd::gather(normal + 2, o);
         }
-        const vint o = vint::load(offset);
-        const vfloat px = simd::gather(position, o), py = simd::gather(position + 1, o),
-                     pz = simd::gather(position + 2, o);
-        const vfloat nx = simd::gather(normal, o), ny = simd::gather(normal + 1, o), nz = simd::gather(normal + 2, o);
+        // faces_light: dot(normal, light - position) > 0, glm's order ((x + y) + z).
+        const vfloat f = nx * (vfloat(light.x) - px) + ny * (vfloat(light.y) - py) + nz * (vfloat(light.z) - pz);
+        const vmask facing = in_list & (vfloat(0.0f) < f);
+        if (!simd::any(facing)) continue;
         // std::max({|x|, |y|, |z|}): the largest magnitude (positions are finite).
         const vfloat scale = vfloat(1.0f) + simd::max(simd::max(magnitude(px), magnitude(py)), magnitude(pz));
         const vfloat step = vfloat(kShadowRayOffset) * scale;
         const vfloat ox = px + nx * step, oy = py + ny * step, oz = pz + nz * step;
-        // A packet narrower than the lanes (RTCRay8 with 16 AVX-512 lanes) takes only its
-        // width, through an aligned copy: its arrays hold `width` floats, aligned to 32 bytes.
-        const int lanes = std::min(simd::kLanes, width - first);
-        const auto put = [&](vfloat v, float* array) {
-            if (lanes == simd::kLanes) {
-                v.store(array + first);
-            } else {
-                alignas(64) float all[simd::kLanes];
-                v.store(all);
-                std::copy_n(all, lanes, array + first);
-            }
-        };
-        put(ox, packet.org_x);
-        put(oy, packet.org_y);
-        put(oz, packet.org_z);
-        put(vfloat(light.x) - ox, packet.dir_x);
-        put(vfloat(light.y) - oy, packet.dir_y);
-        put(vfloat(light.z) - oz, packet.dir_z);
+        simd::compress(facing, ox).store_unaligned(out.ox.data() + n);
+        simd::compress(facing, oy).store_unaligned(out.oy.data() + n);
+        simd::compress(facing, oz).store_unaligned(out.oz.data() + n);
+        simd::compress(facing, vfloat(light.x) - ox).store_unaligned(out.dx.data() + n);
+        simd::compress(facing, vfloat(light.y) - oy).store_unaligned(out.dy.data() + n);
+        simd::compress(facing, vfloat(light.z) - oz).store_unaligned(out.dz.data() + n);
+        simd::compress(facing, index).store_unaligned(reinterpret_cast<int32_t*>(out.point.data() + n));
+        n += size_t(std::popcount(simd::bits(facing)));
+    }
+    out.size = n;
+}
+
+// A packet's lanes from rays[first, first + count): lanes past count (the last packet of a
+// list) repeat the first ray; valid[] turns them off.
+template <class PacketRay>
+void set_lanes(PacketRay& packet, int width, const FacingRays& rays, size_t first, int count) {
+    const float* from[6] = {rays.ox.data(), rays.oy.data(), rays.oz.data(),
+                            rays.dx.data(), rays.dy.data(), rays.dz.data()};
+    float* to[6] = {packet.org_x, packet.org_y, packet.org_z, packet.dir_x, packet.dir_y, packet.dir_z};
+    for (int a = 0; a < 6; ++a) {
+        if (count == width) {
+            std::copy_n(from[a] + first, width, to[a]);
+        } else {
+            for (int lane = 0; lane < width; ++lane) to[a][lane] = from[a][first + size_t(lane < count ? lane : 0)];
+        }
     }
     for (int lane = 0; lane < width; ++lane) {
         packet.tnear[lane] = 0.0f;
@@ -123,17 +141,17 @@ void trace_packets(RTCScene scene, const shadow::SurfacePoints& points, const gl
                    uint8_t bit, std::span<uint8_t> visible) {
     using P = Packet<N>;
     RTCIntersectContext context = coherent_context();
-    thread_local std::vector<uint32_t> traced;
-    facing_points(points, light, bit, traced);
-    for (size_t first = 0; first < traced.size(); first += N) {
+    thread_local FacingRays rays;
+    facing_rays(points, light, rays);
+    for (size_t first = 0; first < rays.size; first += N) {
         typename P::Ray packet;
         alignas(64) int valid[N];
-        const int count = int(std::min<size_t>(N, traced.size() - first));
+        const int count = int(std::min<size_t>(N, rays.size - first));
         for (int lane = 0; lane < N; ++lane) valid[lane] = lane < count ? -1 : 0;
-        set_lanes(packet, N, points, traced.data() + first, count, light);
+        set_lanes(packet, N, rays, first, count);
         P::occluded(valid, scene, &context, &packet);
-        for (int lane = 0; lane < N; ++lane)
-            if (valid[lane] && packet.tfar[lane] >= 0.0f) visible[traced[first + size_t(lane)]] |= bit;
+        for (int lane = 0; lane < count; ++lane)
+            if (packet.tfar[lane] >= 0.0f) visible[rays.point[first + size_t(lane)]] |= bit;
     }
 }
 
