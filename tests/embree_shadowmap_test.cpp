@@ -292,6 +292,17 @@ TEST(SurfacePoints, PointsAtAnOffsetAreTheReferenceThroughThatCentroid) {
         for (size_t l = 0; l < 2; ++l) facing |= uint8_t(faces_light(listed.position[i], listed.normal[i], lights[l]) << l);
         ASSERT_EQ(listed.facing[i], facing) << i;
     }
+    // The lanes gather through the same centroids (its one-lane-at-a-time branch) gives the
+    // same points.
+    SurfacePoints lanes;
+    gather_surface_points(tile, size_t(w), grid.mesh, rays, lanes, lights);
+    ASSERT_EQ(lanes.pixel, reference.pixel);
+    ASSERT_EQ(lanes.facing.size(), lanes.size());
+    for (size_t i = 0; i < lanes.size(); ++i) {
+        ASSERT_EQ(0, std::memcmp(&lanes.position[i], &reference.position[i], sizeof(glm::vec3))) << i;
+        ASSERT_EQ(0, std::memcmp(&lanes.normal[i], &reference.normal[i], sizeof(glm::vec3))) << i;
+        ASSERT_EQ(lanes.facing[i], listed.facing[i]) << i;
+    }
 }
 
 // find_shadow_edges picks the wholly covered pixels next to another set of lights, and the

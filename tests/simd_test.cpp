@@ -1,8 +1,9 @@
 // The SIMD wrappers (raster/simd/simd.h and the back end this build selects) lane by lane
 // against the scalar definition of each operation (raster/simd/scalar.h, plain C++): the
-// arithmetic, compares, select, conversions and rounding, gather, masked stores, the stamp
-// layout, store_stamp_rows and stream_copy, over seeded random inputs (all 32-bit patterns:
-// NaN, infinities and denormals included) and hand-picked edge values.
+// arithmetic, compares, select, conversions and rounding, gather, interleaved loads and stores,
+// compress, masked stores, the stamp layout, store_stamp_rows and stream_copy, over seeded
+// random inputs (all 32-bit patterns: NaN, infinities and denormals included) and hand-picked
+// edge values.
 #include <gtest/gtest.h>
 
 #include <bit>
@@ -328,6 +329,48 @@ TEST(Simd, InterleavedLoadsSplitTheThreeStreams) {
             ASSERT_EQ(y[i], values[size_t(start + 3 * i + 1)]);
             ASSERT_EQ(z[i], values[size_t(start + 3 * i + 2)]);
         }
+    }
+}
+
+TEST(Simd, InterleavedStoresMergeTheThreeStreams) {
+    Rng rng(21);
+    for (int round = 0; round < kRounds; ++round) {
+        const Lanes<float> a = random_floats(rng), b = random_floats(rng), c = random_floats(rng);
+        std::vector<float> memory(3 * kLanes + 6, 7.0f);
+        const int start = int(rng.uniform(0, 3));  // unaligned
+        store_interleaved3(memory.data() + start, load(a), load(b), load(c));
+        for (int i = 0; i < kLanes; ++i) {
+            ASSERT_TRUE(same_bits(memory[size_t(start + 3 * i)], a[i]));
+            ASSERT_TRUE(same_bits(memory[size_t(start + 3 * i + 1)], b[i]));
+            ASSERT_TRUE(same_bits(memory[size_t(start + 3 * i + 2)], c[i]));
+        }
+        for (size_t j = 0; j < memory.size(); ++j)  // nothing outside the 3 * kLanes values
+            if (j < size_t(start) || j >= size_t(start + 3 * kLanes)) ASSERT_EQ(memory[j], 7.0f);
+    }
+}
+
+TEST(Simd, CompressMovesTheSelectedLanesDownInOrder) {
+    Rng rng(22);
+    for (int round = 0; round < kRounds; ++round) {
+        const uint32_t pattern = uint32_t(rng.bits()) & all_bits();
+        const Lanes<float> a = random_floats(rng);
+        const Lanes<int32_t> n = random_ints(rng);
+        const Lanes<float> packed = lanes(compress(mask_of(pattern), load(a)));
+        const Lanes<int32_t> packed_n = lanes(compress(mask_of(pattern), load(n)));
+        int k = 0;
+        for (int i = 0; i < kLanes; ++i)
+            if ((pattern >> i) & 1u) {
+                ASSERT_TRUE(same_bits(packed[k], a[i]));
+                ASSERT_EQ(packed_n[k], n[i]);
+                ++k;
+            }
+        for (; k < kLanes; ++k) {
+            ASSERT_TRUE(same_bits(packed[k], 0.0f));
+            ASSERT_EQ(packed_n[k], 0);
+        }
+        std::vector<float> memory(kLanes + 3);
+        load(a).store_unaligned(memory.data() + 3);
+        for (int i = 0; i < kLanes; ++i) ASSERT_TRUE(same_bits(memory[size_t(3 + i)], a[i]));
     }
 }
 

@@ -1,6 +1,7 @@
 #include "raster/embree/shadow_rays.h"
 
 #include <algorithm>
+#include <bit>
 #include <cmath>
 #include <vector>
 
@@ -43,70 +44,93 @@ void trace_single(RTCScene scene, const shadow::SurfacePoints& points, const glm
     }
 }
 
-// The points that face the light, in order: packets are filled with them only, so no lane
-// is spent on a point the light cannot reach (and consecutive points stay neighbours).
-void facing_points(const shadow::SurfacePoints& points, const glm::vec3& light, uint8_t bit,
-                   std::vector<uint32_t>& out) {
-    out.resize(points.size());
-    size_t n = 0;
-    if (points.facing.size() == points.size()) {  // gathered with the lights: branch-free
-        const uint8_t* facing = points.facing.data();
-        uint32_t* to = out.data();
-        for (size_t i = 0; i < points.size(); ++i) {
-            to[n] = uint32_t(i);
-            n += (facing[i] & bit) != 0;
-        }
-    } else {
-        for (size_t i = 0; i < points.size(); ++i)
-            if (shadow::faces_light(points.position[i], points.normal[i], light)) out[n++] = uint32_t(i);
-    }
-    out.resize(n);
-}
+// Shadow rays of points that face the light, in point order, as structure of arrays: packets
+// are filled with them only, so no lane is spent on a point the light cannot reach (and
+// consecutive rays stay neighbours), and a packet copies its lanes instead of gathering them.
+// Made kChunk points at a time, so the rays are still in L1 when their packets copy them.
+struct FacingRays {
+    static constexpr size_t kChunk = 256;
+    static constexpr size_t kRoom = kChunk + 16 + size_t(simd::kLanes);  // a chunk's rays, a packet's leftovers, a vector
+    alignas(64) float ox[kRoom], oy[kRoom], oz[kRoom], dx[kRoom], dy[kRoom], dz[kRoom];
+    alignas(64) uint32_t point[kRoom];  // the index of each ray's point
+    size_t size = 0;
 
-// shadow_ray() for the lanes of a packet, kLanes at a time: the points' positions and normals
-// gathered, the same float operations (max of the magnitudes, then the offset), stored into
-// the packet's arrays.
-template <class PacketRay>
-void set_lanes(PacketRay& packet, int width, const shadow::SurfacePoints& points, const uint32_t* index, int count,
-               const glm::vec3& light) {
+    // Keeps rays [first, size) as rays [0, size - first): the last packet's worth not yet traced.
+    void keep_from(size_t first) {
+        for (float* v : {ox, oy, oz, dx, dy, dz}) std::copy(v + first, v + size, v);
+        std::copy(point + first, point + size, point);
+        size -= first;
+    }
+};
+
+// Appends shadow_ray() for every point in [begin, end) that faces the light (faces_light),
+// simd::kLanes points at a time: positions and normals loaded as three interleaved streams,
+// the same float operations (the facing test, the largest magnitude, the offset) in lanes,
+// and the facing lanes appended compressed, as whole vectors (the arrays have a vector of
+// room past the last ray).
+void facing_rays(const shadow::SurfacePoints& points, size_t begin, size_t end, const glm::vec3& light,
+                 FacingRays& out) {
+    using simd::kLanes;
     using simd::vfloat;
     using simd::vint;
+    using simd::vmask;
+    if (begin == end) return;
     const float* position = &points.position[0].x;
     const float* normal = &points.normal[0].x;
+    const vfloat lx(light.x), ly(light.y), lz(light.z);
     const vint sign_off(0x7FFFFFFF);
     const auto magnitude = [&](vfloat v) { return simd::float_of_bits(simd::bits_of(v) & sign_off); };
-    for (int first = 0; first < width; first += simd::kLanes) {
-        alignas(64) int32_t offset[simd::kLanes];
-        for (int lane = 0; lane < simd::kLanes; ++lane) {
-            const int k = first + lane;
-            offset[lane] = int32_t(3 * index[k < count ? k : 0]);  // idle lanes repeat the first ray
+    const auto split = [](const float* p, vfloat& x, vfloat& y, vfloat& z) {
+        vint a, b, c;
+        simd::load_interleaved3(reinterpret_cast<const int32_t*>(p), a, b, c);
+        x = simd::float_of_bits(a), y = simd::float_of_bits(b), z = simd::float_of_bits(c);
+    };
+    size_t n = out.size;
+    for (size_t first = begin; first < end; first += size_t(kLanes)) {
+        const vint index = simd::lane_index() + vint(int32_t(first));
+        vfloat px, py, pz, nx, ny, nz;
+        vmask in_range(true);
+        if (end - first >= size_t(kLanes)) {
+            split(position + 3 * first, px, py, pz);
+            split(normal + 3 * first, nx, ny, nz);
+        } else {  // the last points: lanes past them repeat the last one, and are off
+            in_range = index < vint(int32_t(end));
+            const vint o = simd::min(index, vint(int32_t(end - 1))) * vint(3);
+            px = simd::gather(position, o), py = simd::gather(position + 1, o), pz = simd::gather(position + 2, o);
+            nx = simd::gather(normal, o), ny = simd::gather(normal + 1, o), nz = simd::gather(normal + 2, o);
         }
-        const vint o = vint::load(offset);
-        const vfloat px = simd::gather(position, o), py = simd::gather(position + 1, o),
-                     pz = simd::gather(position + 2, o);
-        const vfloat nx = simd::gather(normal, o), ny = simd::gather(normal + 1, o), nz = simd::gather(normal + 2, o);
+        // faces_light: dot(normal, light - position) > 0, glm's order ((x + y) + z).
+        const vfloat f = nx * (lx - px) + ny * (ly - py) + nz * (lz - pz);
+        const vmask facing = in_range & (vfloat(0.0f) < f);
+        if (!simd::any(facing)) continue;
         // std::max({|x|, |y|, |z|}): the largest magnitude (positions are finite).
         const vfloat scale = vfloat(1.0f) + simd::max(simd::max(magnitude(px), magnitude(py)), magnitude(pz));
         const vfloat step = vfloat(kShadowRayOffset) * scale;
         const vfloat ox = px + nx * step, oy = py + ny * step, oz = pz + nz * step;
-        // A packet narrower than the lanes (RTCRay8 with 16 AVX-512 lanes) takes only its
-        // width, through an aligned copy: its arrays hold `width` floats, aligned to 32 bytes.
-        const int lanes = std::min(simd::kLanes, width - first);
-        const auto put = [&](vfloat v, float* array) {
-            if (lanes == simd::kLanes) {
-                v.store(array + first);
-            } else {
-                alignas(64) float all[simd::kLanes];
-                v.store(all);
-                std::copy_n(all, lanes, array + first);
-            }
-        };
-        put(ox, packet.org_x);
-        put(oy, packet.org_y);
-        put(oz, packet.org_z);
-        put(vfloat(light.x) - ox, packet.dir_x);
-        put(vfloat(light.y) - oy, packet.dir_y);
-        put(vfloat(light.z) - oz, packet.dir_z);
+        simd::compress(facing, ox).store_unaligned(out.ox + n);
+        simd::compress(facing, oy).store_unaligned(out.oy + n);
+        simd::compress(facing, oz).store_unaligned(out.oz + n);
+        simd::compress(facing, lx - ox).store_unaligned(out.dx + n);
+        simd::compress(facing, ly - oy).store_unaligned(out.dy + n);
+        simd::compress(facing, lz - oz).store_unaligned(out.dz + n);
+        simd::compress(facing, index).store_unaligned(reinterpret_cast<int32_t*>(out.point + n));
+        n += size_t(std::popcount(simd::bits(facing)));
+    }
+    out.size = n;
+}
+
+// A packet's lanes from rays[first, first + count): lanes past count (the last packet of a
+// list) repeat the first ray; valid[] turns them off.
+template <class PacketRay>
+void set_lanes(PacketRay& packet, int width, const FacingRays& rays, size_t first, int count) {
+    const float* from[6] = {rays.ox, rays.oy, rays.oz, rays.dx, rays.dy, rays.dz};
+    float* to[6] = {packet.org_x, packet.org_y, packet.org_z, packet.dir_x, packet.dir_y, packet.dir_z};
+    for (int a = 0; a < 6; ++a) {
+        if (count == width) {
+            std::copy_n(from[a] + first, width, to[a]);
+        } else {
+            for (int lane = 0; lane < width; ++lane) to[a][lane] = from[a][first + size_t(lane < count ? lane : 0)];
+        }
     }
     for (int lane = 0; lane < width; ++lane) {
         packet.tnear[lane] = 0.0f;
@@ -118,22 +142,32 @@ void set_lanes(PacketRay& packet, int width, const shadow::SurfacePoints& points
     }
 }
 
+// Packets of N consecutive facing rays (the last one of the list may hold fewer), the same
+// packets whichever chunk their rays were made in.
 template <int N>
 void trace_packets(RTCScene scene, const shadow::SurfacePoints& points, const glm::vec3& light,
                    uint8_t bit, std::span<uint8_t> visible) {
     using P = Packet<N>;
+    static_assert(N <= 16, "FacingRays keeps up to 16 rays from one chunk to the next");
     RTCIntersectContext context = coherent_context();
-    thread_local std::vector<uint32_t> traced;
-    facing_points(points, light, bit, traced);
-    for (size_t first = 0; first < traced.size(); first += N) {
-        typename P::Ray packet;
-        alignas(64) int valid[N];
-        const int count = int(std::min<size_t>(N, traced.size() - first));
-        for (int lane = 0; lane < N; ++lane) valid[lane] = lane < count ? -1 : 0;
-        set_lanes(packet, N, points, traced.data() + first, count, light);
-        P::occluded(valid, scene, &context, &packet);
-        for (int lane = 0; lane < N; ++lane)
-            if (valid[lane] && packet.tfar[lane] >= 0.0f) visible[traced[first + size_t(lane)]] |= bit;
+    thread_local FacingRays rays;
+    rays.size = 0;
+    const size_t count = points.size();
+    for (size_t begin = 0; begin < count; begin += FacingRays::kChunk) {
+        const size_t end = std::min(count, begin + FacingRays::kChunk);
+        facing_rays(points, begin, end, light, rays);
+        size_t first = 0;
+        for (; first < rays.size && (first + N <= rays.size || end == count); first += N) {
+            typename P::Ray packet;
+            alignas(64) int valid[N];
+            const int lanes = int(std::min<size_t>(N, rays.size - first));
+            for (int lane = 0; lane < N; ++lane) valid[lane] = lane < lanes ? -1 : 0;
+            set_lanes(packet, N, rays, first, lanes);
+            P::occluded(valid, scene, &context, &packet);
+            for (int lane = 0; lane < lanes; ++lane)
+                if (packet.tfar[lane] >= 0.0f) visible[rays.point[first + size_t(lane)]] |= bit;
+        }
+        rays.keep_from(std::min(first, rays.size));
     }
 }
 

@@ -7,7 +7,7 @@
 //
 // Rays go in coherent packets of 8 or 16 consecutive points facing the light (the tile's 4x4
 // pixel blocks, see surface_points.h, less the points facing away, so every lane of a packet
-// is a ray; SurfacePoints::facing when the points were gathered with the lights) through
+// is a ray; the facing test and the rays set up in lanes, see shadow_rays.cpp) through
 // rtcOccluded8/16 with the COHERENT flag, or one at a time through rtcOccluded1 (the
 // reference path). Both give the same answer ray for ray.
 #pragma once

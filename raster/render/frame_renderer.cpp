@@ -440,8 +440,12 @@ void FrameRenderer::Impl::shade_shadows(const FrameState& frame, const RegionPas
     frame.light_test(points, frame.light_targets, lit);
     const uint32_t all_lit = passes.all_lit;
     // The lights reaching each point: those the test found, and those the surface turns away
-    // from (their term is zero anyway).
-    for (size_t i = 0; i < points.size(); ++i) lit[i] = uint8_t((lit[i] | ~points.facing[i]) & all_lit);
+    // from (their term is zero anyway). Through local pointers: a store through a byte
+    // pointer may alias anything, so the vectors' own members would be read again per point.
+    uint8_t* const lights_at = lit.data();
+    const uint8_t* const facing = points.facing.data();
+    const size_t count = points.size();
+    for (size_t i = 0; i < count; ++i) lights_at[i] = uint8_t((lights_at[i] | ~facing[i]) & all_lit);
     edges.clear();
     if (samples > 1) {
         shadow::find_shadow_edges(tile, w, points, lit, samples, edge_scratch, edges);
@@ -449,11 +453,13 @@ void FrameRenderer::Impl::shade_shadows(const FrameState& frame, const RegionPas
     }
     groups.resize(std::max<size_t>(groups.size(), all_lit));
     for (uint32_t mask = 0; mask < all_lit; ++mask) groups[mask].clear();
-    for (size_t i = 0; i < points.size(); ++i) {
-        const uint32_t mask = lit[i];
+    const uint32_t* const pixel = points.pixel.data();
+    const uint32_t width = uint32_t(w);
+    for (size_t i = 0; i < count; ++i) {
+        const uint32_t mask = lights_at[i];
         if (mask == all_lit) continue;
-        const uint32_t p = points.pixel[i];
-        groups[mask].push_back({int(p % w), int(p / w), tile.triangle_at(int(p % w), int(p / w))});
+        const int x = int(pixel[i] % width), y = int(pixel[i] / width);  // 32-bit divisions
+        groups[mask].push_back({x, y, tile.triangle_at(x, y)});
     }
     for (uint32_t mask = 0; mask < all_lit; ++mask) {
         if (groups[mask].empty()) continue;

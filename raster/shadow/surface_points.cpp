@@ -174,40 +174,39 @@ void gather_surface_points(const Tile& tile, size_t image_width, const Mesh& mes
     using simd::vmask;
     static_assert(16 % kLanes == 0, "lane groups tile a 4x4 block");
     const TileRect& rect = tile.rect;
-    out.start(size_t(rect.width()) * size_t(rect.height()), !lights.empty());
     const size_t light_count = std::min(lights.size(), size_t(8));
+    // Room for every pixel of the tile and one vector of lanes past it: each group stores whole
+    // vectors of its kept lanes, compressed, at the end of the lists (scratch storage, so the
+    // sizing writes nothing), which are trimmed to the points kept at the end.
+    const size_t room = size_t(rect.width()) * size_t(rect.height()) + size_t(kLanes);
+    out.clear();
+    out.pixel.resize(room);
+    out.position.resize(room);
+    out.normal.resize(room);
+    if (light_count > 0) out.facing.resize(room);
+    size_t n = 0;
     for (int y = rect.y0; y < rect.y1; ++y)  // the ids' lines, before the blocks read them (see the reference)
         for (int x = rect.x0; x < rect.x1; x += 16) __builtin_prefetch(&tile.triangle_at(x, y));
     thread_local PlaneTable planes;
     planes.clear();
     constexpr int kBlock = 4;
     alignas(64) float xc[kLanes], yc[kLanes], ox[kLanes], oy[kLanes], oz[kLanes], dx[kLanes], dy[kLanes], dz[kLanes];
-    alignas(64) int32_t slot[kLanes], pixel[kLanes];
+    alignas(64) int32_t slot[kLanes], pixel[kLanes], taken[kLanes];
     const PixelRays::RayArrays ray_out{ox, oy, oz, dx, dy, dz};
+    const vmask all(true);
     for (int by = rect.y0; by < rect.y1; by += kBlock)
         for (int bx = rect.x0; bx < rect.x1; bx += kBlock)
             for (int first = 0; first < kBlock * kBlock; first += kLanes) {
                 // Lane i: pixel (bx + (first + i) % 4, by + (first + i) / 4), row-major in the
-                // block like the reference; lanes outside the tile or without a triangle are off.
-                uint32_t on = 0;
-                uint32_t cached = kNoTriangle;
-                int32_t cached_slot = 0;
-                // Lane i shows `triangle`: its plane's slot (one lookup per run of a triangle),
-                // and the lane is on unless the triangle is degenerate (no plane).
-                const auto take = [&](int i, uint32_t triangle) {
-                    if (triangle != cached) {
-                        cached = triangle;
-                        cached_slot = planes.slot(mesh, triangle);
-                    }
-                    if (planes.length[size_t(cached_slot)] == 0.0f) return false;
-                    slot[i] = cached_slot;
-                    on |= 1u << i;
-                    return true;
-                };
+                // block like the reference; lanes outside the tile, without a triangle or on a
+                // degenerate one (no plane) are off. s: each lane's plane slot.
+                vmask on;
+                vint s, pixel_index;
                 if (!tile.centroid && bx + kBlock <= rect.x1 && by + kBlock <= rect.y1) {
                     // A block inside the tile, at pixel centres: the ids by a gather, centres
-                    // and pixel indices in lanes, and a plane lookup per run of one triangle
-                    // (the values the loop below gives).
+                    // and pixel indices in lanes (the values the loop below gives), and one
+                    // plane lookup per triangle the group shows: the lowest lane not yet
+                    // assigned names it, a compare finds its other lanes.
                     const vint lane = simd::lane_index() + vint(first);
                     const vint lx = lane & vint(kBlock - 1), ly = lane >> vint(2);
                     static_assert(kBlock == 4, "lane >> 2 is the row in the block");
@@ -216,34 +215,54 @@ void gather_surface_points(const Tile& tile, size_t image_width, const Mesh& mes
                     const vint id = simd::bits_of(simd::gather(reinterpret_cast<const float*>(tile.triangle), at));
                     (simd::to_float(x) + vfloat(0.5f)).store(xc);
                     (simd::to_float(y) + vfloat(0.5f)).store(yc);
-                    (y * vint(int32_t(image_width)) + x).store(pixel);
+                    pixel_index = y * vint(int32_t(image_width)) + x;
                     alignas(64) int32_t ids[kLanes];
                     id.store(ids);
+                    vmask todo = simd::andnot(id == vint(int32_t(kNoTriangle)), all);
+                    on = todo;
+                    while (simd::any(todo)) {
+                        const uint32_t triangle = uint32_t(ids[std::countr_zero(simd::bits(todo))]);
+                        const vmask same = todo & (id == vint(int32_t(triangle)));
+                        const int32_t found = planes.slot(mesh, triangle);
+                        s = simd::select(same, vint(found), s);
+                        if (planes.length[size_t(found)] == 0.0f) on = simd::andnot(same, on);
+                        todo = simd::andnot(same, todo);
+                    }
+                } else {
+                    uint32_t cached = kNoTriangle;
+                    int32_t cached_slot = 0;
                     for (int i = 0; i < kLanes; ++i) {
-                        const uint32_t triangle = uint32_t(ids[i]);
+                        const int x = bx + (first + i) % kBlock, y = by + (first + i) / kBlock;
                         slot[i] = 0;
-                        if (triangle != kNoTriangle) take(i, triangle);
+                        taken[i] = 0;
+                        pixel[i] = 0;
+                        xc[i] = yc[i] = 0.5f;
+                        if (x >= rect.x1 || y >= rect.y1) continue;
+                        const uint32_t triangle = tile.triangle_at(x, y);
+                        if (triangle == kNoTriangle) continue;
+                        if (triangle != cached) {  // one lookup per run of a triangle
+                            cached = triangle;
+                            cached_slot = planes.slot(mesh, triangle);
+                        }
+                        if (planes.length[size_t(cached_slot)] == 0.0f) continue;
+                        slot[i] = cached_slot;
+                        taken[i] = 1;
+                        pixel[i] = int32_t(size_t(y) * image_width + size_t(x));
+                        if (tile.centroid) {  // a point on the surface (coverage_layers.h)
+                            const glm::vec2 c = tile.centroid[tile.offset(x, y)];
+                            xc[i] = float(x) + 0.5f + c.x;
+                            yc[i] = float(y) + 0.5f + c.y;
+                        } else {
+                            xc[i] = float(x) + 0.5f;
+                            yc[i] = float(y) + 0.5f;
+                        }
                     }
-                } else for (int i = 0; i < kLanes; ++i) {
-                    const int x = bx + (first + i) % kBlock, y = by + (first + i) / kBlock;
-                    slot[i] = 0;
-                    xc[i] = yc[i] = 0.5f;
-                    if (x >= rect.x1 || y >= rect.y1) continue;
-                    const uint32_t triangle = tile.triangle_at(x, y);
-                    if (triangle == kNoTriangle || !take(i, triangle)) continue;
-                    pixel[i] = int32_t(size_t(y) * image_width + size_t(x));
-                    if (tile.centroid) {  // a point on the surface (coverage_layers.h)
-                        const glm::vec2 at = tile.centroid[tile.offset(x, y)];
-                        xc[i] = float(x) + 0.5f + at.x;
-                        yc[i] = float(y) + 0.5f + at.y;
-                    } else {
-                        xc[i] = float(x) + 0.5f;
-                        yc[i] = float(y) + 0.5f;
-                    }
+                    on = vint::load(taken) == vint(1);
+                    s = vint::load(slot);
+                    pixel_index = vint::load(pixel);
                 }
-                if (on == 0) continue;
+                if (!simd::any(on)) continue;
                 rays.rays(size_t(kLanes), xc, yc, ray_out);
-                const vint s = vint::load(slot);
                 const vfloat n_x = simd::gather(planes.nx.data(), s), n_y = simd::gather(planes.ny.data(), s),
                              n_z = simd::gather(planes.nz.data(), s);
                 const vfloat o_x = vfloat::load(ox), o_y = vfloat::load(oy), o_z = vfloat::load(oz);
@@ -254,37 +273,37 @@ void gather_surface_points(const Tile& tile, size_t image_width, const Mesh& mes
                              a_z = simd::gather(planes.pz.data(), s) - o_z;
                 const vfloat t = (n_x * a_x + n_y * a_y + n_z * a_z) / facing;
                 const vfloat p_x = o_x + t * d_x, p_y = o_y + t * d_y, p_z = o_z + t * d_z;
-                const uint32_t kept = on & simd::bits(finite_lanes(p_x) & finite_lanes(p_y) & finite_lanes(p_z));
-                if (kept == 0) continue;
+                const vmask kept = on & finite_lanes(p_x) & finite_lanes(p_y) & finite_lanes(p_z);
+                if (!simd::any(kept)) continue;
                 const vmask flip = vfloat(0.0f) < facing;
                 // -n as the reference negates (times -1 is exact, signed zeros included).
                 const vfloat length = simd::gather(planes.length.data(), s), minus(-1.0f);
                 const vfloat u_x = simd::select(flip, n_x * minus, n_x) / length,
                              u_y = simd::select(flip, n_y * minus, n_y) / length,
                              u_z = simd::select(flip, n_z * minus, n_z) / length;
-                alignas(64) float position[3][kLanes], normal[3][kLanes];
-                p_x.store(position[0]), p_y.store(position[1]), p_z.store(position[2]);
-                u_x.store(normal[0]), u_y.store(normal[1]), u_z.store(normal[2]);
-                alignas(64) int32_t faces[kLanes];
+                // The kept lanes, in lane order (the reference's), appended as whole vectors.
+                simd::compress(kept, pixel_index).store_unaligned(reinterpret_cast<int32_t*>(out.pixel.data() + n));
+                simd::store_interleaved3(&out.position[n].x, simd::compress(kept, p_x), simd::compress(kept, p_y),
+                                         simd::compress(kept, p_z));
+                simd::store_interleaved3(&out.normal[n].x, simd::compress(kept, u_x), simd::compress(kept, u_y),
+                                         simd::compress(kept, u_z));
                 if (light_count > 0) {
-                    vint bits(0);
+                    vint faces(0);
                     for (size_t l = 0; l < light_count; ++l) {
                         const glm::vec3& light = lights[l];
                         // faces_light: dot(normal, light - position) > 0.
                         const vfloat f = u_x * (vfloat(light.x) - p_x) + u_y * (vfloat(light.y) - p_y) +
                                          u_z * (vfloat(light.z) - p_z);
-                        bits = bits | simd::select(vfloat(0.0f) < f, vint(int32_t(1u << l)), vint(0));
+                        faces = faces | simd::select(vfloat(0.0f) < f, vint(int32_t(1u << l)), vint(0));
                     }
-                    bits.store(faces);
+                    simd::store_low_bytes(out.facing.data() + n, simd::compress(kept, faces));
                 }
-                for (uint32_t k = kept; k; k &= k - 1) {
-                    const int i = std::countr_zero(k);
-                    out.pixel.push_back(uint32_t(pixel[i]));
-                    out.position.push_back({position[0][i], position[1][i], position[2][i]});
-                    out.normal.push_back({normal[0][i], normal[1][i], normal[2][i]});
-                    if (light_count > 0) out.facing.push_back(uint8_t(faces[i]));
-                }
+                n += size_t(std::popcount(simd::bits(kept)));
             }
+    out.pixel.resize(n);
+    out.position.resize(n);
+    out.normal.resize(n);
+    if (light_count > 0) out.facing.resize(n);
 }
 
 }  // namespace tessera::shadow

@@ -14,19 +14,22 @@
 #include <vector>
 
 #include "raster/core/pixel_rays.h"
+#include "raster/core/scratch_vector.h"
 #include "raster/core/tile.h"
 #include "raster/core/mesh.h"
 #include "raster/core/visibility.h"
 
 namespace tessera::shadow {
 
+// The lists are ScratchVectors: the lanes gather sizes them for a whole tile without writing
+// them, stores whole vectors of compressed lanes and trims them at the end.
 struct SurfacePoints {
-    std::vector<uint32_t> pixel;      // index into the image, y * width + x
-    std::vector<glm::vec3> position;  // world space
-    std::vector<glm::vec3> normal;    // unit geometric normal, turned towards the camera
+    ScratchVector<uint32_t> pixel;      // index into the image, y * width + x
+    ScratchVector<glm::vec3> position;  // world space
+    ScratchVector<glm::vec3> normal;    // unit geometric normal, turned towards the camera
     // Bit l set when the point faces lights[l] (faces_light), for the lights given to
     // gather_surface_points; empty without lights.
-    std::vector<uint8_t> facing;
+    ScratchVector<uint8_t> facing;
 
     size_t size() const { return pixel.size(); }
     void clear() {

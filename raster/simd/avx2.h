@@ -3,6 +3,7 @@
 #include <immintrin.h>
 
 #include <algorithm>
+#include <bit>
 #include <cstddef>
 #include <cstdint>
 #include <cstring>
@@ -32,6 +33,7 @@ struct vint {
     static vint load(const int32_t* p) { return _mm256_load_si256(reinterpret_cast<const __m256i*>(p)); }
     static vint load_unaligned(const int32_t* p) { return _mm256_loadu_si256(reinterpret_cast<const __m256i*>(p)); }
     void store(int32_t* p) const { _mm256_store_si256(reinterpret_cast<__m256i*>(p), v); }
+    void store_unaligned(int32_t* p) const { _mm256_storeu_si256(reinterpret_cast<__m256i*>(p), v); }
 };
 inline vint operator+(vint a, vint b) { return _mm256_add_epi32(a.v, b.v); }
 inline vint operator-(vint a, vint b) { return _mm256_sub_epi32(a.v, b.v); }
@@ -67,6 +69,7 @@ struct vfloat {
     static vfloat load(const float* p) { return _mm256_load_ps(p); }
     static vfloat load_unaligned(const float* p) { return _mm256_loadu_ps(p); }
     void store(float* p) const { _mm256_store_ps(p, v); }
+    void store_unaligned(float* p) const { _mm256_storeu_ps(p, v); }
 };
 inline vfloat operator+(vfloat a, vfloat b) { return _mm256_add_ps(a.v, b.v); }
 inline vfloat operator-(vfloat a, vfloat b) { return _mm256_sub_ps(a.v, b.v); }
@@ -111,6 +114,28 @@ inline void load_interleaved3(const int32_t* p, vint& a, vint& b, vint& c) {
     b = _mm256_i32gather_epi32(p + 1, from, 4);
     c = _mm256_i32gather_epi32(p + 2, from, 4);
 }
+
+// The inverse of load_interleaved3: p[3i] = a[i], p[3i + 1] = b[i], p[3i + 2] = c[i] for the
+// 3 * kLanes values from p (unaligned), one value at a time (AVX2 has no scatter).
+inline void store_interleaved3(float* p, vfloat a, vfloat b, vfloat c) {
+    alignas(32) float v[3][kLanes];
+    a.store(v[0]), b.store(v[1]), c.store(v[2]);
+    for (int i = 0; i < kLanes; ++i)
+        for (int s = 0; s < 3; ++s) p[3 * i + s] = v[s][i];
+}
+
+// The lanes selected by `m` moved to the lowest lanes, in lane order; the other lanes zero
+// (through memory: AVX2 has no compress).
+template <class V, class T>
+inline V compress_lanes(vmask m, V a) {
+    alignas(32) T in[kLanes], out[kLanes] = {};
+    a.store(in);
+    int n = 0;
+    for (uint32_t k = bits(m); k; k &= k - 1) out[n++] = in[std::countr_zero(k)];
+    return V::load(out);
+}
+inline vfloat compress(vmask m, vfloat a) { return compress_lanes<vfloat, float>(m, a); }
+inline vint compress(vmask m, vint a) { return compress_lanes<vint, int32_t>(m, a); }
 
 // Stores of the lanes selected by `m`: load, blend, store (the tile owns the whole line).
 inline void store_masked(float* p, vmask m, vfloat a) { select(m, a, vfloat::load(p)).store(p); }

@@ -37,6 +37,7 @@ struct vint {
     static vint load(const int32_t* p) { return _mm512_load_si512(p); }
     static vint load_unaligned(const int32_t* p) { return _mm512_loadu_si512(p); }
     void store(int32_t* p) const { _mm512_store_si512(p, v); }
+    void store_unaligned(int32_t* p) const { _mm512_storeu_si512(p, v); }
 };
 inline vint operator+(vint a, vint b) { return _mm512_add_epi32(a.v, b.v); }
 inline vint operator-(vint a, vint b) { return _mm512_sub_epi32(a.v, b.v); }
@@ -70,6 +71,7 @@ struct vfloat {
     vfloat(float s) : v(_mm512_set1_ps(s)) {}
     static vfloat load(const float* p) { return _mm512_load_ps(p); }
     static vfloat load_unaligned(const float* p) { return _mm512_loadu_ps(p); }
+    void store_unaligned(float* p) const { _mm512_storeu_ps(p, v); }
     void store(float* p) const { _mm512_store_ps(p, v); }
 };
 inline vfloat operator+(vfloat a, vfloat b) { return _mm512_add_ps(a.v, b.v); }
@@ -115,6 +117,27 @@ inline void load_interleaved3(const int32_t* p, vint& a, vint& b, vint& c) {
         out[k]->v = _mm512_permutex2var_epi32(low, second, z);
     }
 }
+
+// The inverse of load_interleaved3: p[3i] = a[i], p[3i + 1] = b[i], p[3i + 2] = c[i] for the
+// 3 * kLanes values from p (unaligned): per block of 16 values, a two-source permute of a and
+// b with c's values blended in from a one-source permute.
+inline void store_interleaved3(float* p, vfloat a, vfloat b, vfloat c) {
+    // Value j of block k is p[16k + j]: stream (16k + j) mod 3, lane (16k + j) / 3.
+    alignas(64) static constexpr int32_t kLane[48] = {0, 0, 0, 1, 1, 1, 2, 2, 2, 3, 3, 3, 4, 4, 4, 5,  //
+                                                     5, 5, 6, 6, 6, 7, 7, 7, 8, 8, 8, 9, 9, 9, 10, 10,  //
+                                                     10, 11, 11, 11, 12, 12, 12, 13, 13, 13, 14, 14, 14, 15, 15, 15};
+    static constexpr __mmask16 kFromB[3] = {0x2492, 0x9249, 0x4924}, kFromC[3] = {0x4924, 0x2492, 0x9249};
+    for (int k = 0; k < 3; ++k) {
+        const __m512i i = _mm512_load_si512(kLane + 16 * k);
+        const __m512i i_or_b = _mm512_mask_add_epi32(i, kFromB[k], i, _mm512_set1_epi32(16));  // b's lanes follow a's
+        const __m512 ab = _mm512_permutex2var_ps(a.v, i_or_b, b.v);
+        _mm512_storeu_ps(p + 16 * k, _mm512_mask_blend_ps(kFromC[k], ab, _mm512_permutexvar_ps(i, c.v)));
+    }
+}
+
+// The lanes selected by `m` moved to the lowest lanes, in lane order; the other lanes zero.
+inline vfloat compress(vmask m, vfloat a) { return _mm512_maskz_compress_ps(m.m, a.v); }
+inline vint compress(vmask m, vint a) { return _mm512_maskz_compress_epi32(m.m, a.v); }
 
 // Aligned stores of the lanes selected by `m`.
 inline void store_masked(float* p, vmask m, vfloat a) { _mm512_mask_store_ps(p, m.m, a.v); }

@@ -28,6 +28,7 @@ struct vint {
     static vint load(const int32_t* p) { return vint(p[0]); }
     static vint load_unaligned(const int32_t* p) { return vint(p[0]); }
     void store(int32_t* p) const { p[0] = v; }
+    void store_unaligned(int32_t* p) const { p[0] = v; }
 };
 // Wrapping arithmetic like the hardware lanes (computed in uint32 to avoid C++ UB).
 inline vint operator+(vint a, vint b) { return vint(int32_t(uint32_t(a.v) + uint32_t(b.v))); }
@@ -60,6 +61,7 @@ struct vfloat {
     static vfloat load(const float* p) { return vfloat(p[0]); }
     static vfloat load_unaligned(const float* p) { return vfloat(p[0]); }
     void store(float* p) const { p[0] = v; }
+    void store_unaligned(float* p) const { p[0] = v; }
 };
 inline vfloat operator+(vfloat a, vfloat b) { return a.v + b.v; }
 inline vfloat operator-(vfloat a, vfloat b) { return a.v - b.v; }
@@ -107,6 +109,17 @@ inline void load_interleaved3(const int32_t* p, vint& a, vint& b, vint& c) {
     b = vint(p[1]);
     c = vint(p[2]);
 }
+
+// The inverse of load_interleaved3: p[0] = a, p[1] = b, p[2] = c.
+inline void store_interleaved3(float* p, vfloat a, vfloat b, vfloat c) {
+    p[0] = a.v;
+    p[1] = b.v;
+    p[2] = c.v;
+}
+
+// The lanes selected by `m` moved to the lowest lanes, in lane order; the other lanes zero.
+inline vfloat compress(vmask m, vfloat a) { return m.m ? a : vfloat(0.0f); }
+inline vint compress(vmask m, vint a) { return m.m ? a : vint(0); }
 
 // Stores the lanes of `a` where `m` is set (the others keep their memory contents).
 inline void store_masked(float* p, vmask m, vfloat a) { if (m.m) p[0] = a.v; }
