@@ -35,7 +35,6 @@ template <class Empty, class Radiance>
 void fill_background_lanes(const Tile& tile, Empty empty, Radiance radiance) {
     constexpr int N = simd::kLanes;
     static_assert(N <= 32, "one bit per lane");
-    constexpr uint32_t kAll = N == 32 ? ~0u : (1u << N) - 1u;
     alignas(64) float r[N], g[N], b[N];
     for (int y = tile.rect.y0; y < tile.rect.y1; ++y)
         for (int x0 = tile.rect.x0; x0 < tile.rect.x1; x0 += N) {
@@ -44,7 +43,7 @@ void fill_background_lanes(const Tile& tile, Empty empty, Radiance radiance) {
             if (!mask) continue;
             const simd::V3<simd::vfloat> c = radiance(x0, y);
             glm::vec4* out = &tile.colour_at(x0, y);
-            if (mask == kAll) {  // all of them (the open sky): the lanes interleaved as they are
+            if (mask == simd::kEveryLaneBits) {  // all of them (the open sky): the lanes interleaved as they are
                 simd::store_interleaved4(&out->r, c.x, c.y, c.z, simd::vfloat(1.0f));
                 continue;
             }

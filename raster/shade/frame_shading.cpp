@@ -30,8 +30,6 @@ struct TriangleSetup {
     pipeline::PerspectiveBarycentrics barycentrics;
 };
 
-constexpr uint32_t kAllLanes = kLanes == 32 ? ~0u : (1u << kLanes) - 1u;
-
 // The kernel's colours to kLanes consecutive pixels, alpha 1 (an opaque surface covers its
 // pixel whatever its material's opacity).
 void put_opaque(glm::vec4* out, const Lanes& lanes) {
@@ -453,7 +451,7 @@ void FrameShading::shade_tile_surfaces(const Tile& tile) const {
             shade::shade_lanes<simd::vfloat>(ctx, lanes, 0);
             // Opaque surfaces cover the pixel whatever their material's opacity.
             glm::vec4* out = &tile.colour_at(x0, y);
-            if (covered == kAllLanes) {
+            if (covered == simd::kEveryLaneBits) {
                 put_opaque(out, lanes);
                 continue;
             }

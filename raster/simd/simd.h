@@ -19,6 +19,9 @@
 
 namespace tessera::simd {
 
+// bits() of a mask with every lane set: the test for "the whole group" on lane masks.
+inline constexpr uint32_t kEveryLaneBits = kLanes == 32 ? ~0u : (1u << kLanes) - 1u;
+
 // A 2D "stamp" of pixels processed by one instruction: 4x4 for 16 lanes, 4x2 for 8, 1x1 for 1.
 inline constexpr int kStampW = kLanes >= 4 ? 4 : 1;
 inline constexpr int kStampH = kLanes / kStampW;
