@@ -7,6 +7,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
 #include <stdexcept>
 #include <string>
 #include <vector>
@@ -112,13 +113,24 @@ void update_span(const Row& r, const Coefficients& c, int begin, int end, int le
 // the ends. A cell's Laplacian reads this sum for its own row (the edge term) and for the rows
 // above and below (the corner terms), so computing it once per row and step instead of three
 // times gives the same float additions on the same operands: the same bits as update_span.
+// pair[i] = centre[i - 1] + centre[i + 1] for i in [0, count), pair 64-byte aligned.
+void aligned_pair_sums(const float* __restrict centre, float* __restrict pair, int count) {
+    for (int i = 0; i < count; ++i) pair[i] = centre[i - 1] + centre[i + 1];
+}
+
 void pair_sums(const float* __restrict row, float* __restrict pair, int width, bool periodic) {
     if (width == 1) {
         pair[0] = row[0] + row[0];
         return;
     }
     pair[0] = row[periodic ? width - 1 : 0] + row[1];
-    for (int x = 1; x < width - 1; ++x) pair[x] = row[x - 1] + row[x + 1];
+    // The interior in two loops: cells up to pair's next 64-byte boundary, then the rest with
+    // every store aligned. One loop from x = 1 stored every vector across two cache lines (a
+    // ring slot starts on a line when the width is a multiple of 16); aligned stores take
+    // BM_RdStep/256/1/8 from ~0.53 to ~0.47 ms.
+    int x = 1;
+    for (; x < width - 1 && (reinterpret_cast<uintptr_t>(pair + x) & 63) != 0; ++x) pair[x] = row[x - 1] + row[x + 1];
+    aligned_pair_sums(row + x, static_cast<float*>(__builtin_assume_aligned(pair + x, 64)), width - 1 - x);
     pair[width - 1] = row[width - 2] + row[periodic ? 0 : width - 1];
 }
 
