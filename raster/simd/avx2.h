@@ -93,6 +93,15 @@ inline vfloat floor(vfloat a) { return _mm256_floor_ps(a.v); }
 inline vint round_to_int(vfloat a) { return _mm256_cvtps_epi32(a.v); }  // nearest even
 inline vfloat gather(const float* base, vint index) { return _mm256_i32gather_ps(base, index.v, 4); }
 
+// Lane i of a, b, c, d = base[4 q_i .. 4 q_i + 3] (simd.h): one float gather per channel.
+inline void gather_quads(const float* base, vint quad, vfloat& a, vfloat& b, vfloat& c, vfloat& d) {
+    const __m256i i = _mm256_slli_epi32(quad.v, 2);
+    a.v = _mm256_i32gather_ps(base, i, 4);
+    b.v = _mm256_i32gather_ps(base + 1, i, 4);
+    c.v = _mm256_i32gather_ps(base + 2, i, 4);
+    d.v = _mm256_i32gather_ps(base + 3, i, 4);
+}
+
 // The bits of each lane as the other type (no conversion).
 inline vint bits_of(vfloat a) { return _mm256_castps_si256(a.v); }
 inline vfloat float_of_bits(vint a) { return _mm256_castsi256_ps(a.v); }

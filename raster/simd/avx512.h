@@ -97,6 +97,25 @@ inline vfloat gather(const float* base, vint index) {
     return _mm512_mask_i32gather_ps(_mm512_setzero_ps(), kAllLanes, index.v, base, 4);
 }
 
+// Lane i of a, b, c, d = base[4 q_i .. 4 q_i + 3] (simd.h). Four gathers of eight 64-bit
+// pairs ((a, b) and (c, d) of lanes 0-7 and 8-15) and a two-source permute per channel: half
+// the elements of four 16-lane float gathers, whose cost grows with the elements fetched.
+inline void gather_quads(const float* base, vint quad, vfloat& a, vfloat& b, vfloat& c, vfloat& d) {
+    const __m512i pair = _mm512_add_epi32(quad.v, quad.v);  // in 8-byte units: exact below 2^30 quads
+    const __m256i low = _mm512_castsi512_si256(pair), high = _mm512_extracti64x4_epi64(pair, 1);
+    const __m512d none = _mm512_setzero_pd();
+    const __m512 ab0 = _mm512_castpd_ps(_mm512_mask_i32gather_pd(none, 0xFF, low, base, 8));
+    const __m512 ab1 = _mm512_castpd_ps(_mm512_mask_i32gather_pd(none, 0xFF, high, base, 8));
+    const __m512 cd0 = _mm512_castpd_ps(_mm512_mask_i32gather_pd(none, 0xFF, low, base + 2, 8));
+    const __m512 cd1 = _mm512_castpd_ps(_mm512_mask_i32gather_pd(none, 0xFF, high, base + 2, 8));
+    const __m512i even = _mm512_setr_epi32(0, 2, 4, 6, 8, 10, 12, 14, 16, 18, 20, 22, 24, 26, 28, 30);
+    const __m512i odd = _mm512_add_epi32(even, _mm512_set1_epi32(1));
+    a.v = _mm512_permutex2var_ps(ab0, even, ab1);
+    b.v = _mm512_permutex2var_ps(ab0, odd, ab1);
+    c.v = _mm512_permutex2var_ps(cd0, even, cd1);
+    d.v = _mm512_permutex2var_ps(cd0, odd, cd1);
+}
+
 // The bits of each lane as the other type (no conversion).
 inline vint bits_of(vfloat a) { return _mm512_castps_si512(a.v); }
 inline vfloat float_of_bits(vint a) { return _mm512_castsi512_ps(a.v); }

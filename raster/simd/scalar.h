@@ -2,6 +2,7 @@
 // operation of the wider back ends means (see simd.h).
 #pragma once
 #include <cmath>
+#include <cstddef>
 #include <cstdint>
 #include <cstring>
 
@@ -79,6 +80,15 @@ inline vfloat floor(vfloat a) { return std::floor(a.v); }
 // Round to nearest, ties to even (the default rounding mode, like cvtps2dq).
 inline vint round_to_int(vfloat a) { return vint(int32_t(std::nearbyint(a.v))); }
 inline vfloat gather(const float* base, vint index) { return base[index.v]; }
+
+// a, b, c, d = base[4q .. 4q + 3] (simd.h).
+inline void gather_quads(const float* base, vint quad, vfloat& a, vfloat& b, vfloat& c, vfloat& d) {
+    const float* q = base + 4 * size_t(uint32_t(quad.v));
+    a = q[0];
+    b = q[1];
+    c = q[2];
+    d = q[3];
+}
 
 // The bits of each lane as the other type (no conversion).
 inline vint bits_of(vfloat a) {

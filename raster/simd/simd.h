@@ -44,5 +44,9 @@ inline vint stamp_y() {
 //
 // store_interleaved4(p, a, b, c, d): lane i of the four to p[4i .. 4i + 3], the channels of
 // kLanes RGBA float pixels stored as a tile's colour buffer keeps them (glm::vec4 per pixel).
+//
+// gather_quads(base, q, a, b, c, d): per lane i, the four floats base[4 q_i .. 4 q_i + 3]
+// into lane i of a, b, c, d (q_i < 2^29): an RGBA float texel per lane, fetched as the same
+// bits as four gather() calls would fetch them.
 
 }  // namespace tessera::simd
