@@ -45,10 +45,9 @@ inline TexelLanes mix(const TexelLanes& a, const TexelLanes& b, vfloat t) {
 }
 
 inline TexelLanes fetch(const Texture& texture, vint texel) {
-    const float* base = &texture.texels()->r;
-    const vint i = texel * vint(4);
-    return {simd::gather(base, i), simd::gather(base, i + vint(1)), simd::gather(base, i + vint(2)),
-            simd::gather(base, i + vint(3))};
+    TexelLanes t;
+    simd::gather_quads(&texture.texels()->r, texel, t.r, t.g, t.b, t.a);
+    return t;
 }
 
 inline TexelLanes nearest(const Texture& texture, vfloat u, vfloat v, TextureWrap wrap) {
