@@ -110,7 +110,6 @@ inline void traverse_stamps(const DepthPlane& plane, const EdgeLanes (&e)[3], co
 // a tile (under 128 + 8 pixels a side, fixed_point.h) in 4x4 stamps, and a row's worth of
 // slack for the whole-group stores of the last row.
 constexpr int kMaxListed = 36 * 36;
-constexpr int kListSlack = 64;  // stamps in a row of the largest tile (256 pixels)
 
 // A conservative bound on the stamp columns of a row that an edge lets through. For the row
 // (kStampH pixel rows from the row's corner), fm is the edge's largest F over those pixel rows
@@ -134,78 +133,56 @@ inline ColumnBound column_bound(int32_t fm, int32_t dy, float inv, int columns) 
     return {0, int(std::floor(t * (1.0f / kStampW) + kMargin))};  // columns whose first pixel is at most t
 }
 
-// traverse_stamps<false> for a small triangle's region (whole-pixel samples), without
-// data-dependent branches: first each row's span of stamp columns is bounded (column_bound(),
-// three edges, scalar) and the span's stamps are listed with whole-group vector stores (corner
-// F of each edge, corner position, buffer index; a row adds its span's length to the count),
-// then the listed stamps are visited in one loop of known length with traverse_stamps's
-// per-stamp work. Where the row-by-row walk mispredicts the first covered stamp and the row's
-// exit, this mispredicts one loop exit per region. The region must hold at most kMaxListed
-// stamps.
+// traverse_stamps for a small triangle's region (whole-pixel samples), each row cut to a
+// conservative span of stamp columns (column_bound(), three edges, scalar) and its stamps
+// visited branch-free: one loop exit per row in place of the row walk's hunt for the first
+// covered stamp and its exit test.
 template <bool kOnEdge, class Sink>
 inline void traverse_listed(const DepthPlane& plane, const EdgeLanes (&e)[3], const int32_t (&dy)[3],
                             const OnEdge* on, int sx0, int sy0, int x1, int y1, const TileRect& tile,
                             int tile_size, Sink&& sink) {
-    alignas(64) int32_t list_f[3][kMaxListed + kListSlack];
-    alignas(64) float list_x[kMaxListed + kListSlack], list_y[kMaxListed + kListSlack];
-    alignas(64) int32_t list_index[kMaxListed + kListSlack];
     const int columns = (x1 - sx0) / kStampW + 1;
-    const int groups = (columns + kLanes - 1) / kLanes;  // whole-group stores per row
     const unsigned stamps_per_row = unsigned(tile_size / kStampW);
-    // Per lane of a group: the lane's stamp column's offsets of F, x and the buffer index.
-    const vint lane = simd::lane_index();
-    const vint lane_f[3] = {lane * vint(e[0].step_x), lane * vint(e[1].step_x), lane * vint(e[2].step_x)};
-    const vfloat lane_x = simd::to_float(lane * vint(kStampW));
-    const vint lane_index = lane * vint(kLanes);
     float inv[3];
     int32_t rise[3];  // the largest change of F from a row's corner down its pixel rows
     for (int i = 0; i < 3; ++i) {
         inv[i] = dy[i] != 0 ? 1.0f / float(dy[i]) : 0.0f;
         rise[i] = std::max(0, e[i].step_y / kStampH * (kStampH - 1));
     }
-    int32_t row_f[3] = {e[0].f, e[1].f, e[2].f};
-    int n = 0;
-    for (int sy = sy0; sy <= y1; sy += kStampH) {
-        int lo = 0, hi = columns - 1;
-        for (int i = 0; i < 3; ++i) {
-            const ColumnBound b = column_bound(row_f[i] + rise[i], dy[i], inv[i], columns);
-            lo = std::max(lo, b.lo);
-            hi = std::min(hi, b.hi);
-        }
-        const size_t row_index =
-            (unsigned(sy - tile.y0) / kStampH * stamps_per_row + unsigned(sx0 - tile.x0) / kStampW) * kLanes;
-        const vfloat fy(float(sy - plane.ay));
-        for (int g = 0; g < groups; ++g) {
-            const int c = lo + g * kLanes;
-            const int at = n + g * kLanes;
-            for (int i = 0; i < 3; ++i)
-                (vint(row_f[i] + e[i].step_x * c) + lane_f[i]).store_unaligned(&list_f[i][at]);
-            (vfloat(float(sx0 + c * kStampW - plane.ax)) + lane_x).store_unaligned(&list_x[at]);
-            fy.store_unaligned(&list_y[at]);
-            (vint(int32_t(row_index) + c * kLanes) + lane_index).store_unaligned(&list_index[at]);
-        }
-        n += std::max(0, hi - lo + 1);
-        for (int i = 0; i < 3; ++i) row_f[i] += e[i].step_y;
-    }
     const vfloat stamp_x = simd::to_float(simd::stamp_x());
     const vfloat stamp_y = simd::to_float(simd::stamp_y());
     const vfloat a(plane.a), b(plane.b), c(plane.c);
     const vint zero(0);
-    for (int k = 0; k < n; ++k) {
-        const vint f0 = vint(list_f[0][k]) + e[0].offset, f1 = vint(list_f[1][k]) + e[1].offset,
-                   f2 = vint(list_f[2][k]) + e[2].offset;
-        const vmask covered = (f0 | f1 | f2) >= zero;
-        // As traverse_stamps: fma(a, x - ax, fma(b, y - ay, c)), the same operations in order.
-        const vfloat z_row = simd::fma(b, vfloat(list_y[k]) + stamp_y, c);
-        vfloat z = simd::fma(a, vfloat(list_x[k]) + stamp_x, z_row);
-        if constexpr (kOnEdge) {
-            z = simd::select(f0 == vint(on->f[0]), z + vfloat(on->step[0]), z);
-            z = simd::select(f1 == vint(on->f[1]), z + vfloat(on->step[1]), z);
-            z = simd::select(f2 == vint(on->f[2]), z + vfloat(on->step[2]), z);
+    const vint step_x0(e[0].step_x), step_x1(e[1].step_x), step_x2(e[2].step_x);
+    int32_t row_f[3] = {e[0].f, e[1].f, e[2].f};
+    for (int sy = sy0; sy <= y1; sy += kStampH) {
+        int lo = 0, hi = columns - 1;
+        for (int i = 0; i < 3; ++i) {
+            const ColumnBound bound = column_bound(row_f[i] + rise[i], dy[i], inv[i], columns);
+            lo = std::max(lo, bound.lo);
+            hi = std::min(hi, bound.hi);
         }
-        z = simd::min(simd::max(z, vfloat(-1.0f)), vfloat(0.0f));
-        const int sx = plane.ax + int(list_x[k]), sy = plane.ay + int(list_y[k]);
-        sink(size_t(list_index[k]), sx, sy, covered, z);
+        const vfloat z_row = simd::fma(b, vfloat(float(sy - plane.ay)) + stamp_y, c);
+        vint f0 = vint(row_f[0] + e[0].step_x * lo) + e[0].offset, f1 = vint(row_f[1] + e[1].step_x * lo) + e[1].offset,
+             f2 = vint(row_f[2] + e[2].step_x * lo) + e[2].offset;
+        int sx = sx0 + lo * kStampW;
+        float fx = float(sx - plane.ax);
+        size_t index = (unsigned(sy - tile.y0) / kStampH * stamps_per_row + unsigned(sx - tile.x0) / kStampW) * kLanes;
+        for (int k = lo; k <= hi; ++k, sx += kStampW, index += kLanes, fx += float(kStampW)) {
+            const vmask covered = (f0 | f1 | f2) >= zero;
+            vfloat z = simd::fma(a, vfloat(fx) + stamp_x, z_row);
+            if constexpr (kOnEdge) {
+                z = simd::select(f0 == vint(on->f[0]), z + vfloat(on->step[0]), z);
+                z = simd::select(f1 == vint(on->f[1]), z + vfloat(on->step[1]), z);
+                z = simd::select(f2 == vint(on->f[2]), z + vfloat(on->step[2]), z);
+            }
+            z = simd::min(simd::max(z, vfloat(-1.0f)), vfloat(0.0f));
+            sink(index, sx, sy, covered, z);
+            f0 = f0 + step_x0;
+            f1 = f1 + step_x1;
+            f2 = f2 + step_x2;
+        }
+        for (int i = 0; i < 3; ++i) row_f[i] += e[i].step_y;
     }
 }
 
