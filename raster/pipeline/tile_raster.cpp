@@ -106,101 +106,6 @@ inline void traverse_stamps(const DepthPlane& plane, const EdgeLanes (&e)[3], co
     }
 }
 
-// The stamps of a region that traverse_listed() visits, at most: a small triangle's box within
-// a tile (under 128 + 8 pixels a side, fixed_point.h) in 4x4 stamps, and a row's worth of
-// slack for the whole-group stores of the last row.
-constexpr int kMaxListed = 36 * 36;
-constexpr int kMaxSpanRows = 160 / kStampH;  // rows of stamps in a small triangle's region, at most
-
-// A conservative bound on the stamp columns of a row that an edge lets through. For the row
-// (kStampH pixel rows from the row's corner), fm is the edge's largest F over those pixel rows
-// at the region's first column, and F falls by dy per pixel to the right: the edge lets
-// pixel column u through only where fm - dy * u >= 0, i.e. u >= fm / dy (dy < 0) or
-// u <= fm / dy (dy > 0). The quotient is taken in float (fm is exact in float, |fm| < 2^24,
-// and inv = 1 / dy is rounded once) and widened by a 1/256-stamp margin, far above its
-// relative error of 2^-22, so no column holding a covered lane is ever cut; a column kept in
-// excess only costs a stamp whose lanes the exact integer test then rejects.
-struct ColumnBound {
-    int lo, hi;
-};
-inline ColumnBound column_bound(int32_t fm, int32_t dy, float inv, int columns) {
-    if (dy == 0) return fm >= 0 ? ColumnBound{0, columns - 1} : ColumnBound{columns, -1};
-    // t: the pixel column where the edge's F crosses 0, clamped to a little outside the region
-    // so that the stamp index below stays a small int.
-    const float t = std::clamp(float(fm) * inv, -2.0f * kStampW, float((columns + 2) * kStampW));
-    constexpr float kMargin = 1.0f / 256.0f;
-    if (dy < 0)  // columns whose last pixel reaches t: c * kStampW + kStampW - 1 >= t
-        return {int(std::ceil((t - float(kStampW - 1)) * (1.0f / kStampW) - kMargin)), columns - 1};
-    return {0, int(std::floor(t * (1.0f / kStampW) + kMargin))};  // columns whose first pixel is at most t
-}
-
-// traverse_stamps for a small triangle's region (whole-pixel samples), each row cut to a
-// conservative span of stamp columns (column_bound(), three edges, scalar) and its stamps
-// visited branch-free: one loop exit per row in place of the row walk's hunt for the first
-// covered stamp and its exit test.
-template <bool kOnEdge, class Sink>
-inline void traverse_listed(const DepthPlane& plane, const EdgeLanes (&e)[3], const int32_t (&dy)[3],
-                            const OnEdge* on, int sx0, int sy0, int x1, int y1, const TileRect& tile,
-                            int tile_size, Sink&& sink) {
-    const int columns = (x1 - sx0) / kStampW + 1;
-    const unsigned stamps_per_row = unsigned(tile_size / kStampW);
-    float inv[3];
-    int32_t rise[3];  // the largest change of F from a row's corner down its pixel rows
-    for (int i = 0; i < 3; ++i) {
-        inv[i] = dy[i] != 0 ? 1.0f / float(dy[i]) : 0.0f;
-        rise[i] = std::max(0, e[i].step_y / kStampH * (kStampH - 1));
-    }
-    const vfloat stamp_x = simd::to_float(simd::stamp_x());
-    const vfloat stamp_y = simd::to_float(simd::stamp_y());
-    const vfloat a(plane.a), b(plane.b), c(plane.c);
-    const vint zero(0);
-    const vint step_x0(e[0].step_x), step_x1(e[1].step_x), step_x2(e[2].step_x);
-    // First every row's span (independent rows: the bounds' latencies overlap), then the rows'
-    // stamps: a row's start is then a few loads away from the previous row's mispredicted exit.
-    int32_t start_f[3][kMaxSpanRows];
-    int start_column[kMaxSpanRows], count[kMaxSpanRows];
-    const int rows = (y1 - sy0) / kStampH + 1;
-    int32_t row_f[3] = {e[0].f, e[1].f, e[2].f};
-    for (int r = 0; r < rows; ++r) {
-        int lo = 0, hi = columns - 1;
-        for (int i = 0; i < 3; ++i) {
-            const ColumnBound bound = column_bound(row_f[i] + rise[i], dy[i], inv[i], columns);
-            lo = std::max(lo, bound.lo);
-            hi = std::min(hi, bound.hi);
-        }
-        start_column[r] = lo;
-        count[r] = hi - lo + 1;
-        for (int i = 0; i < 3; ++i) {
-            start_f[i][r] = row_f[i] + e[i].step_x * lo;
-            row_f[i] += e[i].step_y;
-        }
-    }
-    for (int r = 0; r < rows; ++r) {
-        const int sy = sy0 + r * kStampH;
-        const vfloat z_row = simd::fma(b, vfloat(float(sy - plane.ay)) + stamp_y, c);
-        vint f0 = vint(start_f[0][r]) + e[0].offset, f1 = vint(start_f[1][r]) + e[1].offset,
-             f2 = vint(start_f[2][r]) + e[2].offset;
-        int sx = sx0 + start_column[r] * kStampW;
-        float fx = float(sx - plane.ax);
-        size_t index = (unsigned(sy - tile.y0) / kStampH * stamps_per_row + unsigned(sx - tile.x0) / kStampW) * kLanes;
-        const int n = count[r];
-        for (int k = 0; k < n; ++k, sx += kStampW, index += kLanes, fx += float(kStampW)) {
-            const vmask covered = (f0 | f1 | f2) >= zero;
-            vfloat z = simd::fma(a, vfloat(fx) + stamp_x, z_row);
-            if constexpr (kOnEdge) {
-                z = simd::select(f0 == vint(on->f[0]), z + vfloat(on->step[0]), z);
-                z = simd::select(f1 == vint(on->f[1]), z + vfloat(on->step[1]), z);
-                z = simd::select(f2 == vint(on->f[2]), z + vfloat(on->step[2]), z);
-            }
-            z = simd::min(simd::max(z, vfloat(-1.0f)), vfloat(0.0f));
-            sink(index, sx, sy, covered, z);
-            f0 = f0 + step_x0;
-            f1 = f1 + step_x1;
-            f2 = f2 + step_x2;
-        }
-    }
-}
-
 // The stamps of a region entirely inside the triangle: every lane covered, depth only.
 template <class Sink>
 inline void fill_stamps(const DepthPlane& plane, int sx0, int sy0, int sx1, int sy1, const TileRect& tile,
@@ -392,19 +297,6 @@ inline void traverse_with(const TriangleSetup& t, const TileRect& tile, int tile
         EdgeLanes lanes[3];
         for (int i = 0; i < 3; ++i)
             lanes[i] = edge_lanes(int32_t(t.f[i]) + t.dx[i] * (sy0 - t.miny) - t.dy[i] * (sx0 - t.minx), t.dx[i], t.dy[i]);
-        if constexpr (!kMulti && kLanes >= 8) {
-            if ((y1 - sy0) / kStampH < kMaxSpanRows && !(x1 - sx0 < kTinyExtent && y1 - sy0 < kTinyExtent)) {
-                OnEdge on;
-                if constexpr (kOnEdge)
-                    for (int i = 0; i < 3; ++i) {
-                        const bool here = (holds >> i) & 1;
-                        on.f[i] = here ? 0 : kNever;
-                        on.step[i] = here ? t.depth.edge_step(t.dx[i], t.dy[i]) : 0.0f;
-                    }
-                traverse_listed<kOnEdge>(t.depth, lanes, t.dy, &on, sx0, sy0, x1, y1, tile, tile_size, sink);
-                return;
-            }
-        }
         if (x1 - sx0 < kTinyExtent && y1 - sy0 < kTinyExtent)
             partial.template operator()<true>(lanes, sx0, sy0, x1, y1);
         else
