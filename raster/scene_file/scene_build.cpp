@@ -76,10 +76,10 @@ auto at_pointer(const SceneSpec& spec, const std::string& pointer, const Build& 
 
 // The scene's textures in its order. The generated ones are built side by side, one task
 // each: a reaction-diffusion skin's steps then run on one thread instead of a fork and join of
-// both threads per step (9,000 of them for the snakes' three skins, ~12% of the simulation's
-// CPU), and a thread helps with a skin's rows only when it has nothing else to do. Files are
-// read afterwards on this thread. The error reported is that of the first texture in the
-// scene's order that fails, whatever the scheduling.
+// both threads per step (9,000 of them for the snakes' three skins), and a thread helps with
+// a skin's rows only when it has nothing else to do. Files are read afterwards on this
+// thread. The error reported is that of the first texture in the scene's order that fails,
+// whatever the scheduling.
 std::vector<texture::Texture> build_textures(const SceneSpec& spec) {
     const size_t count = spec.textures.size();
     auto build = [&](size_t i) {
