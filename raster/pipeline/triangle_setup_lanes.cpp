@@ -1,5 +1,6 @@
 #include "raster/pipeline/triangle_setup_lanes.h"
 
+#include <bit>
 #include <cstddef>
 
 #include "raster/simd/lane_math.h"
@@ -57,9 +58,14 @@ void SmallSetups::write(int lane, TriangleSetup& t) const {
     t.small = 1;
     t.transparent = 0;
     // holds_centres(): holds_sample() at the pixel centre makes setup_triangle's test (a
-    // top-left edge whose constant part is a multiple of 256 that Bezout lets it meet).
+    // top-left edge whose constant part is a multiple of 256 that Bezout lets it meet); the
+    // lanes did the first two tests (may_hold_centres), so the call is made only for the
+    // rare edges that pass them.
     unsigned on_edge = 0;
-    for (int i = 0; i < 3; ++i) on_edge |= unsigned(holds_sample(t, i, 0, 0)) << i;
+    for (unsigned maybe = unsigned(may_hold_centres[lane]); maybe; maybe &= maybe - 1) {
+        const int i = std::countr_zero(maybe);
+        on_edge |= unsigned(holds_sample(t, i, 0, 0)) << i;
+    }
     t.on_edge = uint8_t(on_edge);
 }
 
@@ -110,16 +116,21 @@ vmask small_triangles(const WindowLanes& v, vmask active, CullMode cull, const V
     // E at the first pixel centre P of the box, less one off top-left edges, as F and residue.
     const vint half(kSubpixels / 2);
     const vint px = simd::shift_left<kSubpixelBits>(minx) + half, py = simd::shift_left<kSubpixelBits>(miny) + half;
+    vint may_hold(0);
     for (int i = 0; i < 3; ++i) {
         const int j = i == 2 ? 0 : i + 1;
         const vint dX = X[j] - X[i], dY = Y[j] - Y[i];
         const vmask top_left = (dY < zero) | ((dY == zero) & (zero < dX));
         const vint e = dX * (py - Y[i]) - dY * (px - X[i]) - simd::select(top_left, zero, vint(1));
+        const vint residue = e & vint(kSubpixels - 1);
         (e >> bits).store(out.f[i]);
-        (e & vint(kSubpixels - 1)).store(out.residue[i]);
+        residue.store(out.residue[i]);
         dX.store(out.dx[i]);
         dY.store(out.dy[i]);
+        // holds_sample(t, i, 0, 0)'s first tests: top-left, residue (its sample step) 0.
+        may_hold = may_hold | simd::select(top_left & (residue == zero), vint(1 << i), zero);
     }
+    may_hold.store(out.may_hold_centres);
 
     // The depth planes (DepthPlane::from), for every lane: those of lanes that are not drawn
     // are never read.
