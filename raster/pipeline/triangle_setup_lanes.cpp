@@ -80,7 +80,10 @@ vmask small_triangles(const WindowLanes& v, vmask active, CullMode cull, const V
     // Window coordinates lie within 2^22 (fixed_point.h): the extents do not wrap.
     const vint extent(kSmallExtent);
     const vmask lanes = active & (xmax - xmin < extent) & (ymax - ymin < extent);
-    if (!simd::any(lanes)) return active;
+    if (!simd::any(lanes)) {
+        out.result_bits[0] = out.result_bits[1] = out.result_bits[2] = out.result_bits[3] = 0;
+        return active;
+    }
 
     // Twice the signed area (setup_triangle), exact in int32 here.
     const vint area2 = (v.X[1] - v.X[0]) * (v.Y[2] - v.Y[0]) - (v.Y[1] - v.Y[0]) * (v.X[2] - v.X[0]);
@@ -103,6 +106,10 @@ vmask small_triangles(const WindowLanes& v, vmask active, CullMode cull, const V
     minx.store(out.box[0]), miny.store(out.box[1]), maxx.store(out.box[2]), maxy.store(out.box[3]);
     const uint32_t set_up = simd::bits(lanes), zero_area = simd::bits(flat);
     const uint32_t culled_face = simd::bits(culled), no_samples = simd::bits(empty);
+    out.result_bits[0] = set_up & zero_area;
+    out.result_bits[1] = set_up & ~zero_area & culled_face;
+    out.result_bits[2] = set_up & ~zero_area & ~culled_face & no_samples;
+    out.result_bits[3] = set_up & ~(zero_area | culled_face | no_samples);
     for (int lane = 0; lane < kLanes; ++lane) {
         const uint32_t bit = 1u << lane;
         if (!(set_up & bit)) continue;

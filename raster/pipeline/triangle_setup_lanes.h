@@ -54,6 +54,9 @@ struct SmallSetups {
     // rest (Bezout's gcd) only on these.
     alignas(64) int32_t may_hold_centres[simd::kLanes];
     SetupResult result[simd::kLanes];
+    // The same results as lane bits (bit i: lane i), for counting and for visiting the drawn
+    // lanes alone: zero_area, culled_face, no_samples, drawn (SetupResult's order).
+    uint32_t result_bits[4];
 
     // Writes the setup of a lane whose result is drawn (triangle and transparent are left to
     // the caller). Written in place: a setup assembled elsewhere and copied would be read
