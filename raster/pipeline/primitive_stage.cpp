@@ -119,6 +119,16 @@ void run_primitive_stage(const Mesh& mesh, const ClipVertices& v, const Viewport
         const uint32_t scalar =
             simd::bits(classify_small_triangles(w, inside, options.cull, viewport, options.samples, small));
         const uint32_t fast = simd::bits(inside) & ~scalar, is_valid = simd::bits(valid);
+        // The small lanes' results counted from their lane bits; then only the lanes that add
+        // a bin item (drawn small ones) or go the scalar way are visited, in lane order
+        // (submission order), rather than every lane through a branch on its result.
+        const uint32_t drawn_bits = small.result_bits[3] & fast;
+        stats.zero_area += unsigned(std::popcount(small.result_bits[0] & fast));
+        stats.culled_face += unsigned(std::popcount(small.result_bits[1] & fast));
+        stats.no_samples += unsigned(std::popcount(small.result_bits[2] & fast));
+        stats.setups += unsigned(std::popcount(drawn_bits));
+        stats.invalid += unsigned(std::popcount(simd::bits(active) & ~is_valid));
+        const uint32_t slow = is_valid & ~fast;
         // Deferring pays when the tile stage finds a bin's triangles near each other in the
         // mesh: here, when consecutive drawn triangles mostly fall into the same tile. Where
         // they scatter over the tiles (a soup), the setups are made now and copied into the
@@ -127,8 +137,8 @@ void run_primitive_stage(const Mesh& mesh, const ClipVertices& v, const Viewport
         if (!stored) {
             int drawn = 0, changes = 0;
             int32_t previous = -1;
-            for (int lane = 0; lane < n; ++lane) {
-                if (!(fast & (1u << lane)) || small.result[lane] != SetupResult::drawn) continue;
+            for (uint32_t bits = drawn_bits; bits; bits &= bits - 1) {
+                const int lane = std::countr_zero(bits);
                 const int32_t tile = (small.box[1][lane] >> tile_shift) * tiles_x + (small.box[0][lane] >> tile_shift);
                 changes += drawn > 0 && tile != previous;
                 previous = tile;
@@ -137,11 +147,10 @@ void run_primitive_stage(const Mesh& mesh, const ClipVertices& v, const Viewport
             stored = 2 * changes > drawn;
         }
         if (stored) setup_small_triangles(w, inside, options.cull, viewport, options.samples, small);
-        for (int lane = 0; lane < n; ++lane) {
+        for (uint32_t bits = drawn_bits | slow; bits; bits &= bits - 1) {
+            const int lane = std::countr_zero(bits);
             const uint32_t id = t + uint32_t(lane);
-            if (fast & (1u << lane)) {
-                count(small.result[lane], stats);
-                if (small.result[lane] != SetupResult::drawn) continue;
+            if (drawn_bits & (1u << lane)) {
                 const BinItem item{id, int16_t(small.box[0][lane]), int16_t(small.box[1][lane]),
                                    int16_t(small.box[2][lane]), int16_t(small.box[3][lane])};
                 if (stored) {
@@ -154,11 +163,9 @@ void run_primitive_stage(const Mesh& mesh, const ClipVertices& v, const Viewport
                 } else {
                     items.push_back(item);
                 }
-            } else if (is_valid & (1u << lane)) {
+            } else {
                 primitive(v, viewport, options, id, indices[3 * size_t(id)], indices[3 * size_t(id) + 1],
                           indices[3 * size_t(id) + 2], transparent(id), items, setups, stats);
-            } else {
-                ++stats.invalid;
             }
         }
     }

@@ -1,5 +1,6 @@
 #include "raster/pipeline/triangle_setup_lanes.h"
 
+#include <bit>
 #include <cstddef>
 
 #include "raster/simd/lane_math.h"
@@ -57,9 +58,14 @@ void SmallSetups::write(int lane, TriangleSetup& t) const {
     t.small = 1;
     t.transparent = 0;
     // holds_centres(): holds_sample() at the pixel centre makes setup_triangle's test (a
-    // top-left edge whose constant part is a multiple of 256 that Bezout lets it meet).
+    // top-left edge whose constant part is a multiple of 256 that Bezout lets it meet); the
+    // lanes did the first two tests (may_hold_centres), so the call is made only for the
+    // rare edges that pass them.
     unsigned on_edge = 0;
-    for (int i = 0; i < 3; ++i) on_edge |= unsigned(holds_sample(t, i, 0, 0)) << i;
+    for (unsigned maybe = unsigned(may_hold_centres[lane]); maybe; maybe &= maybe - 1) {
+        const int i = std::countr_zero(maybe);
+        on_edge |= unsigned(holds_sample(t, i, 0, 0)) << i;
+    }
     t.on_edge = uint8_t(on_edge);
 }
 
@@ -74,7 +80,10 @@ vmask small_triangles(const WindowLanes& v, vmask active, CullMode cull, const V
     // Window coordinates lie within 2^22 (fixed_point.h): the extents do not wrap.
     const vint extent(kSmallExtent);
     const vmask lanes = active & (xmax - xmin < extent) & (ymax - ymin < extent);
-    if (!simd::any(lanes)) return active;
+    if (!simd::any(lanes)) {
+        out.result_bits[0] = out.result_bits[1] = out.result_bits[2] = out.result_bits[3] = 0;
+        return active;
+    }
 
     // Twice the signed area (setup_triangle), exact in int32 here.
     const vint area2 = (v.X[1] - v.X[0]) * (v.Y[2] - v.Y[0]) - (v.Y[1] - v.Y[0]) * (v.X[2] - v.X[0]);
@@ -97,6 +106,10 @@ vmask small_triangles(const WindowLanes& v, vmask active, CullMode cull, const V
     minx.store(out.box[0]), miny.store(out.box[1]), maxx.store(out.box[2]), maxy.store(out.box[3]);
     const uint32_t set_up = simd::bits(lanes), zero_area = simd::bits(flat);
     const uint32_t culled_face = simd::bits(culled), no_samples = simd::bits(empty);
+    out.result_bits[0] = set_up & zero_area;
+    out.result_bits[1] = set_up & ~zero_area & culled_face;
+    out.result_bits[2] = set_up & ~zero_area & ~culled_face & no_samples;
+    out.result_bits[3] = set_up & ~(zero_area | culled_face | no_samples);
     for (int lane = 0; lane < kLanes; ++lane) {
         const uint32_t bit = 1u << lane;
         if (!(set_up & bit)) continue;
@@ -110,16 +123,21 @@ vmask small_triangles(const WindowLanes& v, vmask active, CullMode cull, const V
     // E at the first pixel centre P of the box, less one off top-left edges, as F and residue.
     const vint half(kSubpixels / 2);
     const vint px = simd::shift_left<kSubpixelBits>(minx) + half, py = simd::shift_left<kSubpixelBits>(miny) + half;
+    vint may_hold(0);
     for (int i = 0; i < 3; ++i) {
         const int j = i == 2 ? 0 : i + 1;
         const vint dX = X[j] - X[i], dY = Y[j] - Y[i];
         const vmask top_left = (dY < zero) | ((dY == zero) & (zero < dX));
         const vint e = dX * (py - Y[i]) - dY * (px - X[i]) - simd::select(top_left, zero, vint(1));
+        const vint residue = e & vint(kSubpixels - 1);
         (e >> bits).store(out.f[i]);
-        (e & vint(kSubpixels - 1)).store(out.residue[i]);
+        residue.store(out.residue[i]);
         dX.store(out.dx[i]);
         dY.store(out.dy[i]);
+        // holds_sample(t, i, 0, 0)'s first tests: top-left, residue (its sample step) 0.
+        may_hold = may_hold | simd::select(top_left & (residue == zero), vint(1 << i), zero);
     }
+    may_hold.store(out.may_hold_centres);
 
     // The depth planes (DepthPlane::from), for every lane: those of lanes that are not drawn
     // are never read.

@@ -49,7 +49,14 @@ struct SmallSetups {
     alignas(64) int32_t box[4][simd::kLanes];  // minx, miny, maxx, maxy
     alignas(64) float plane[3][simd::kLanes];    // DepthPlane a, b, c
     alignas(64) int32_t anchor[2][simd::kLanes];  // DepthPlane ax, ay
+    // Bit i: edge i is top-left and its constant part a multiple of 256, the two tests of
+    // holds_sample() at the pixel centre that almost every edge fails; write() runs the
+    // rest (Bezout's gcd) only on these.
+    alignas(64) int32_t may_hold_centres[simd::kLanes];
     SetupResult result[simd::kLanes];
+    // The same results as lane bits (bit i: lane i), for counting and for visiting the drawn
+    // lanes alone: zero_area, culled_face, no_samples, drawn (SetupResult's order).
+    uint32_t result_bits[4];
 
     // Writes the setup of a lane whose result is drawn (triangle and transparent are left to
     // the caller). Written in place: a setup assembled elsewhere and copied would be read
