@@ -102,7 +102,8 @@ inline vfloat gather(const float* base, vint index) {
 // the elements of four 16-lane float gathers, whose cost grows with the elements fetched.
 inline void gather_quads(const float* base, vint quad, vfloat& a, vfloat& b, vfloat& c, vfloat& d) {
     const __m512i pair = _mm512_add_epi32(quad.v, quad.v);  // in 8-byte units: exact below 2^30 quads
-    const __m256i low = _mm512_castsi512_si256(pair), high = _mm512_extracti64x4_epi64(pair, 1);
+    const __m256i low = _mm512_maskz_extracti64x4_epi64(0xF, pair, 0);
+    const __m256i high = _mm512_maskz_extracti64x4_epi64(0xF, pair, 1);
     const __m512d none = _mm512_setzero_pd();
     const __m512 ab0 = _mm512_castpd_ps(_mm512_mask_i32gather_pd(none, 0xFF, low, base, 8));
     const __m512 ab1 = _mm512_castpd_ps(_mm512_mask_i32gather_pd(none, 0xFF, high, base, 8));
