@@ -120,6 +120,14 @@ BENCHMARK(BM_ShadePixels)
     ->Args({5, 1})
     ->Unit(benchmark::kMillisecond);
 
+// A sampler benchmark's label (its filter, the first argument) and its rate of samples.
+void label_sampler(benchmark::State& state, size_t samples_per_iteration) {
+    static const char* names[] = {"nearest", "bilinear", "mipmap", "trilinear"};
+    state.SetLabel(names[state.range(0)]);
+    state.counters["samples/s"] = benchmark::Counter(double(samples_per_iteration) * double(state.iterations()),
+                                                     benchmark::Counter::kIsRate);
+}
+
 void BM_TextureSample(benchmark::State& state) {
     const auto filter = texture::TextureFilter(state.range(0));
     static const texture::Texture texture = checker(1024);
@@ -139,10 +147,7 @@ void BM_TextureSample(benchmark::State& state) {
         for (const Query& q : queries) sum += texture::sample(texture, q.uv, q.d, filter, texture::TextureWrap::repeat);
         benchmark::DoNotOptimize(sum);
     }
-    static const char* names[] = {"nearest", "bilinear", "mipmap", "trilinear"};
-    state.SetLabel(names[state.range(0)]);
-    state.counters["samples/s"] = benchmark::Counter(double(queries.size()) * double(state.iterations()),
-                                                     benchmark::Counter::kIsRate);
+    label_sampler(state, queries.size());
 }
 BENCHMARK(BM_TextureSample)->DenseRange(0, 3)->Unit(benchmark::kMicrosecond);
 
@@ -175,10 +180,7 @@ void BM_TextureSampleSimd(benchmark::State& state) {
         }
         benchmark::DoNotOptimize(sum);
     }
-    static const char* names[] = {"nearest", "bilinear", "mipmap", "trilinear"};
-    state.SetLabel(names[state.range(0)]);
-    state.counters["samples/s"] = benchmark::Counter(double(blocks.size() * L) * double(state.iterations()),
-                                                     benchmark::Counter::kIsRate);
+    label_sampler(state, blocks.size() * L);
 }
 BENCHMARK(BM_TextureSampleSimd)->DenseRange(0, 3)->Unit(benchmark::kMicrosecond);
 
@@ -213,10 +215,7 @@ void BM_TextureSampleSimdCoherent(benchmark::State& state) {
         }
         benchmark::DoNotOptimize(sum);
     }
-    static const char* names[] = {"nearest", "bilinear", "mipmap", "trilinear"};
-    state.SetLabel(names[state.range(0)]);
-    state.counters["samples/s"] = benchmark::Counter(double(blocks.size() * L) * double(state.iterations()),
-                                                     benchmark::Counter::kIsRate);
+    label_sampler(state, blocks.size() * L);
 }
 BENCHMARK(BM_TextureSampleSimdCoherent)->DenseRange(0, 3)->Unit(benchmark::kMicrosecond);
 
