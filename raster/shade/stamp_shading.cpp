@@ -3,8 +3,10 @@
 #include <tbb/enumerable_thread_specific.h>
 
 #include <bit>
+#include <cstddef>
 #include <cstring>
 #include <memory>
+#include <type_traits>
 
 #include "procedural/hash.h"
 #include "raster/simd/lane_math.h"
@@ -21,9 +23,20 @@ using simd::vfloat;
 using simd::vint;
 using simd::vmask;
 
-// One table record per triangle seen in the tile: barycentric planes e[0..2] (9 floats),
-// positions (9), normals (9), uv (6).
-constexpr int kEdges = 0, kPositions = 9, kNormals = 18, kUvs = 27, kRecord = 33;
+// One table record per triangle seen in the tile is its TriangleAttributes, fetched straight
+// into the table and read as floats: barycentric planes e[0..2] (9 floats), positions (9),
+// normals (9), uv (6), after the id. Building it in place rather than copying a fetched struct
+// into a packed float record saves a copy of 132 bytes per record whose narrow loads read back
+// the fetch's wide stores (a store-forwarding stall each).
+static_assert(std::is_standard_layout_v<TriangleAttributes> && sizeof(TriangleAttributes) % sizeof(float) == 0);
+constexpr int float_offset(size_t bytes) { return int(bytes / sizeof(float)); }
+constexpr int kEdges = float_offset(offsetof(TriangleAttributes, barycentrics));
+constexpr int kPositions = float_offset(offsetof(TriangleAttributes, position));
+constexpr int kNormals = float_offset(offsetof(TriangleAttributes, normal));
+constexpr int kUvs = float_offset(offsetof(TriangleAttributes, uv));
+constexpr int kRecord = float_offset(sizeof(TriangleAttributes));
+static_assert(kPositions == kEdges + 9 && kNormals == kPositions + 9 && kUvs == kNormals + 9 && kRecord == kUvs + 6,
+              "the shading reads the record as 33 packed floats after the id");
 constexpr uint32_t kLookup = 1u << 13;  // direct-mapped id -> slot cache, validated by slot_id
 
 constexpr uint32_t kOpaque = 0xFF000000u;  // alpha 255: every pixel is finished
@@ -33,29 +46,21 @@ const vint kBackground{int32_t(kOpaque)};   // black, as the reference leaves em
 // The id -> slot lookup is a direct-mapped cache whose entries are trusted only when the slot
 // they name is live and holds that id, so a new tile starts by forgetting the count alone.
 struct TriangleTable {
-    std::vector<float> records;
+    std::vector<TriangleAttributes> records;
     std::vector<int32_t> slot_id{-1};  // id per slot; never shrinks, so every lookup entry indexes it
     std::vector<int32_t> lookup = std::vector<int32_t>(kLookup, 0);
     int32_t count = 0;
 
+    // The record floats of slot 0 (slot s starts kRecord floats further on).
+    const float* floats() const { return reinterpret_cast<const float*>(records.data()); }
+
     int32_t insert(const pipeline::TileContext& ctx, uint32_t id) {
-        TriangleAttributes t;
-        fetch_triangle_attributes(ctx, id, t);
         const int32_t slot = count++;
         if (slot_id.size() < size_t(count)) slot_id.resize(size_t(count));
-        if (records.size() < size_t(count) * kRecord) records.resize(size_t(count) * kRecord);
+        if (records.size() < size_t(count)) records.resize(size_t(count));
         slot_id[size_t(slot)] = int32_t(id);
         lookup[id & (kLookup - 1)] = slot;
-        float* r = &records[size_t(slot) * kRecord];
-        for (int k = 0; k < 3; ++k) {
-            const glm::vec3& e = t.barycentrics.e[k];
-            r[kEdges + 3 * k] = e.x, r[kEdges + 3 * k + 1] = e.y, r[kEdges + 3 * k + 2] = e.z;
-            r[kPositions + 3 * k] = t.position[k].x, r[kPositions + 3 * k + 1] = t.position[k].y;
-            r[kPositions + 3 * k + 2] = t.position[k].z;
-            r[kNormals + 3 * k] = t.normal[k].x, r[kNormals + 3 * k + 1] = t.normal[k].y;
-            r[kNormals + 3 * k + 2] = t.normal[k].z;
-            r[kUvs + 2 * k] = t.uv[k].x, r[kUvs + 2 * k + 1] = t.uv[k].y;
-        }
+        fetch_triangle_attributes(ctx, id, records[size_t(slot)]);
         return slot;
     }
 
@@ -231,7 +236,7 @@ struct Shader {
                 rest &= ~simd::bits(lanes);
                 return table.find(ctx, uint32_t(id));
             };
-            const auto record = [&](int32_t slot) { return &table.records[size_t(slot) * kRecord]; };
+            const auto record = [&](int32_t slot) { return table.floats() + size_t(slot) * kRecord; };
             vmask m0, m1, m2, m3;
             const int32_t s0 = next(m0);
             if (!rest) {
@@ -253,7 +258,7 @@ struct Shader {
                                 Blend<4>{{record(s0), record(s1), record(s2), record(s3)}, {m1, m2, m3}}, px, py);
                         } else {
                             const vint slots = table.find(ctx, ids, covered);
-                            colour = shade_lanes(mode, phong, Gather{table.records.data(), slots * vint(kRecord)},
+                            colour = shade_lanes(mode, phong, Gather{table.floats(), slots * vint(kRecord)},
                                                  px, py);
                         }
                     }
