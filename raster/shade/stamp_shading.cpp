@@ -54,7 +54,10 @@ struct TriangleTable {
     // The record floats of slot 0 (slot s starts kRecord floats further on).
     const float* floats() const { return reinterpret_cast<const float*>(records.data()); }
 
-    int32_t insert(const pipeline::TileContext& ctx, uint32_t id) {
+    // Out of line: without it GCC inlines insert into find() and then keeps find() out of
+    // Shader::shade, a call per stamp where most stamps find their triangles already in the
+    // table.
+    [[gnu::noinline]] int32_t insert(const pipeline::TileContext& ctx, uint32_t id) {
         const int32_t slot = count++;
         if (slot_id.size() < size_t(count)) slot_id.resize(size_t(count));
         if (records.size() < size_t(count)) records.resize(size_t(count));
