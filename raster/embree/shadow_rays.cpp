@@ -99,9 +99,7 @@ void facing_rays(const shadow::SurfacePoints& points, size_t begin, size_t end, 
             px = simd::gather(position, o), py = simd::gather(position + 1, o), pz = simd::gather(position + 2, o);
             nx = simd::gather(normal, o), ny = simd::gather(normal + 1, o), nz = simd::gather(normal + 2, o);
         }
-        // faces_light: dot(normal, light - position) > 0, glm's order ((x + y) + z).
-        const vfloat f = nx * (lx - px) + ny * (ly - py) + nz * (lz - pz);
-        const vmask facing = in_range & (vfloat(0.0f) < f);
+        const vmask facing = in_range & shadow::faces_light(px, py, pz, nx, ny, nz, light);
         if (!simd::any(facing)) continue;
         // std::max({|x|, |y|, |z|}): the largest magnitude (positions are finite).
         const vfloat scale = vfloat(1.0f) + simd::max(simd::max(magnitude(px), magnitude(py)), magnitude(pz));

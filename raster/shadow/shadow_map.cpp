@@ -284,10 +284,7 @@ void ShadowMap::mark_lit(const SurfacePoints& points, uint8_t bit, std::span<uin
                      pz = simd::gather(position + 2, offset);
         const vfloat nx = simd::gather(normal, offset), ny = simd::gather(normal + 1, offset),
                      nz = simd::gather(normal + 2, offset);
-        // faces_light(): dot(normal, light - position) > 0, in glm's order ((x + y) + z).
-        const vfloat facing = nx * (vfloat(light.x) - px) + ny * (vfloat(light.y) - py) +
-                              nz * (vfloat(light.z) - pz);
-        const vmask faces = vfloat(0.0f) < facing;
+        const vmask faces = faces_light(px, py, pz, nx, ny, nz, light);
         if (!simd::any(faces)) continue;
         vmask pending = faces, lit(false);
         for (int c = 0; c <= last && simd::any(pending); ++c) {

@@ -289,13 +289,9 @@ void gather_surface_points(const Tile& tile, size_t image_width, const Mesh& mes
                                          simd::compress(kept, u_z));
                 if (light_count > 0) {
                     vint faces(0);
-                    for (size_t l = 0; l < light_count; ++l) {
-                        const glm::vec3& light = lights[l];
-                        // faces_light: dot(normal, light - position) > 0.
-                        const vfloat f = u_x * (vfloat(light.x) - p_x) + u_y * (vfloat(light.y) - p_y) +
-                                         u_z * (vfloat(light.z) - p_z);
-                        faces = faces | simd::select(vfloat(0.0f) < f, vint(int32_t(1u << l)), vint(0));
-                    }
+                    for (size_t l = 0; l < light_count; ++l)
+                        faces = faces | simd::select(faces_light(p_x, p_y, p_z, u_x, u_y, u_z, lights[l]),
+                                                     vint(int32_t(1u << l)), vint(0));
                     simd::store_low_bytes(out.facing.data() + n, simd::compress(kept, faces));
                 }
                 n += size_t(std::popcount(simd::bits(kept)));

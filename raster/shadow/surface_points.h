@@ -18,6 +18,7 @@
 #include "raster/core/tile.h"
 #include "raster/core/mesh.h"
 #include "raster/core/visibility.h"
+#include "raster/simd/simd.h"
 
 namespace tessera::shadow {
 
@@ -82,6 +83,15 @@ void gather_surface_points_at(const Tile& tile, size_t image_width, const Mesh& 
 inline bool faces_light(const glm::vec3& position, const glm::vec3& normal,
                         const glm::vec3& light) {
     return glm::dot(normal, light - position) > 0.0f;
+}
+
+// faces_light for simd::kLanes points, position (px, py, pz) and normal (nx, ny, nz) in
+// lanes: glm::dot's operations in its order ((x + y) + z), so each lane's answer is the
+// one-point test's.
+inline simd::vmask faces_light(simd::vfloat px, simd::vfloat py, simd::vfloat pz, simd::vfloat nx,
+                               simd::vfloat ny, simd::vfloat nz, const glm::vec3& light) {
+    using simd::vfloat;
+    return vfloat(0.0f) < nx * (vfloat(light.x) - px) + ny * (vfloat(light.y) - py) + nz * (vfloat(light.z) - pz);
 }
 
 }  // namespace tessera::shadow
