@@ -25,7 +25,8 @@
 // Why it is faster: zlib walks its sliding window byte by byte and keeps a hash table that run
 // matching never reads (sliding it alone was a tenth of a 1080p frame's CPU time); here runs
 // are found 64 bytes per compare (AVX-512BW; 32 on AVX2, eight per word otherwise) and the
-// window exists only as the two positions zlib's stored-block decision depends on. tests/output_png_test.cpp compares the bytes with zlib's.
+// window exists only as the two positions zlib's stored-block decision depends on.
+// tests/output_png_test.cpp compares the bytes with zlib's.
 #pragma once
 #include <cstddef>
 #include <cstdint>
